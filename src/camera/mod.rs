@@ -1,0 +1,1 @@
+//! camera (see docs/architecture.md).

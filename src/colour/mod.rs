@@ -1,0 +1,1 @@
+//! colour (see docs/architecture.md).

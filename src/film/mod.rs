@@ -1,0 +1,1 @@
+//! film (see docs/architecture.md).

@@ -1,0 +1,1 @@
+//! integrator (see docs/architecture.md).

@@ -1,0 +1,1 @@
+//! light (see docs/architecture.md).

@@ -1,0 +1,3 @@
+fn main() {
+    println!("brume {}", env!("CARGO_PKG_VERSION"));
+}

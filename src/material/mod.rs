@@ -1,0 +1,1 @@
+//! material (see docs/architecture.md).

@@ -1,0 +1,1 @@
+//! medium (see docs/architecture.md).
