@@ -1,1 +1,13 @@
-//! integrator (see docs/architecture.md).
+//! The bidirectional engine: camera pass -> gather structure -> light pass -> film.
+
+pub mod camera_pass;
+pub mod gather;
+pub mod light_pass;
+mod memory;
+mod pass;
+pub mod record;
+pub mod rng;
+pub mod volume;
+
+pub use memory::MemoryEstimate;
+pub use pass::{Budget, Renderer, Stats, radius_for_pass};

@@ -1,0 +1,10 @@
+use std::process::ExitCode;
+
+use super::SceneArgs;
+
+pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
+    let scene = brume::scene::load(&args.scene, &args.sets)?;
+    let s = brume::scene::summary::summarise(&scene);
+    print!("{s}");
+    Ok(ExitCode::SUCCESS)
+}

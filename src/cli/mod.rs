@@ -1,0 +1,71 @@
+//! clap definitions of brume's subcommands and their dispatch.
+
+mod info;
+mod progress;
+// mod render;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+
+/// brume: a spectral renderer for light in fog, smoke and other scattering media
+/// (bidirectional Monte-Carlo ray tracing with integration spheres, multiple spheres and cylinders).
+#[derive(Debug, Parser)]
+#[command(name = "brume", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene file to images (format by extension: .exr scene-linear, .png display sRGB).
+    Render(RenderArgs),
+    /// Validate a scene file and summarise it (counts, spectral bins, memory estimate).
+    Info(SceneArgs),
+}
+
+/// A scene file and overrides of its values.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// Scene file (TOML; see docs/scene-format.md).
+    pub scene: PathBuf,
+    /// Override a scene value by its dotted path, e.g. `--set integrator.q=0.1` or
+    /// `--set camera.width=64`; VALUE is TOML. Validated exactly like the file. Repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output file; repeat for several (e.g. `-o out.exr -o out.png`). Default: the scene's
+    /// `film.outputs`, else SCENE-NAME.exr and SCENE-NAME.png in the current folder.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub outputs: Vec<PathBuf>,
+    /// Number of passes to render (default: the scene's `integrator.passes`).
+    #[arg(long, value_name = "N", conflicts_with = "time")]
+    pub passes: Option<u32>,
+    /// Render for this many seconds of wall-clock time (whole passes; at least one).
+    #[arg(long, value_name = "SECONDS")]
+    pub time: Option<f64>,
+    /// Seed of all random streams (default: the scene's `integrator.seed`). The image is
+    /// bit-identical for a given seed and pass count whatever the thread count.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Print nothing but errors.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
+}
+
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Render(_a) => anyhow::bail!("render: not wired yet"),
+        Command::Info(a) => info::run(&a),
+    }
+}

@@ -1,0 +1,353 @@
+//! The camera (backward) pass: one path per pixel sample, traced through specular events and
+//! media, leaving integration spheres on diffuse surfaces and integration volumes in media.
+
+use glam::Vec3;
+use rand::Rng as _;
+use rayon::prelude::*;
+
+use super::record::{CLASS_ALL, CLASS_C, SurfaceRecord, VolumeRecord, VolumeShape};
+use super::rng::{self, Domain, Rng};
+use crate::film::{Layer, PassBuffer};
+use crate::geometry::{Hit, Ray, spawn};
+use crate::medium::{ChannelPick, Mixture, WalkEnd};
+use crate::scene::Scene;
+use crate::scene::desc::{ChannelPickDesc, GatherMode, VolumeKind};
+use crate::spectrum::Spectrum;
+
+/// What one row (or any batch of pixels) of the camera pass produced.
+#[derive(Default)]
+pub struct CameraOutput {
+    pub surfaces: Vec<SurfaceRecord>,
+    pub volumes: Vec<VolumeRecord>,
+    pub weights: Vec<f32>,
+    /// Radiance seen directly (emitters), per pixel of the batch: (pixel, value).
+    pub direct: Vec<(u32, Spectrum)>,
+    /// Camera paths started.
+    pub paths: u64,
+}
+
+impl CameraOutput {
+    fn push_weight(&mut self, w: &Spectrum, n: usize) -> u32 {
+        let at = self.weights.len() as u32;
+        self.weights.extend_from_slice(w.as_slice(n));
+        at
+    }
+
+    /// Appends `other`, rebasing its weight offsets.
+    pub fn append(&mut self, mut other: CameraOutput) {
+        let base = self.weights.len() as u32;
+        other.surfaces.iter_mut().for_each(|s| s.weight += base);
+        other.volumes.iter_mut().for_each(|v| v.weight += base);
+        self.surfaces.append(&mut other.surfaces);
+        self.volumes.append(&mut other.volumes);
+        self.weights.append(&mut other.weights);
+        self.direct.append(&mut other.direct);
+        self.paths += other.paths;
+    }
+}
+
+/// Runs the camera pass of pass `pass`; rows are independent work items, merged in row order.
+pub fn camera_pass(scene: &Scene, seed: u64, pass: u64) -> CameraOutput {
+    let (w, h) = scene.camera.resolution();
+    let rows: Vec<CameraOutput> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut out = CameraOutput::default();
+            let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
+            for x in 0..w {
+                let pixel = y * w + x;
+                for _ in 0..scene.settings.camera_samples {
+                    let px = x as f32 + rng.random::<f32>();
+                    let py = y as f32 + rng.random::<f32>();
+                    let ray = scene.camera.generate_ray(px, py);
+                    CameraPath::new(scene, pixel).trace(ray, &mut rng, &mut out);
+                    out.paths += 1;
+                }
+            }
+            out
+        })
+        .collect();
+    let mut all = CameraOutput::default();
+    for r in rows {
+        all.append(r);
+    }
+    all
+}
+
+/// Adds the camera pass's directly seen radiance into the pass buffer.
+pub fn splat_direct(out: &CameraOutput, buf: &mut PassBuffer, scale: f32) {
+    for (pixel, v) in &out.direct {
+        let n = buf.n;
+        let slot = buf.slot(Layer::Surface, *pixel as usize);
+        for (s, x) in slot.iter_mut().zip(v.as_slice(n)) {
+            *s += x * scale;
+        }
+    }
+}
+
+struct CameraPath<'a> {
+    scene: &'a Scene,
+    pixel: u32,
+    n: usize,
+    /// Spectral throughput from the camera.
+    w: Spectrum,
+    /// Whether medium segments still leave integration volumes.
+    gathering: bool,
+    /// Whether the path still sees emitters directly (false once they are gathered by volumes).
+    sees_emitters: bool,
+}
+
+enum Segment {
+    /// The path goes on to the surface at the end of the segment.
+    Reached,
+    /// The path ended inside the medium.
+    Ended,
+    /// A real scattering at distance `s`; the path continues from there.
+    Scattered(f32),
+}
+
+impl<'a> CameraPath<'a> {
+    fn new(scene: &'a Scene, pixel: u32) -> Self {
+        let n = scene.grid.n;
+        Self {
+            scene,
+            pixel,
+            n,
+            w: Spectrum::splat(1.0, n),
+            gathering: true,
+            sees_emitters: true,
+        }
+    }
+
+    fn trace(mut self, mut ray: Ray, rng: &mut Rng, out: &mut CameraOutput) {
+        let scene = self.scene;
+        let mut medium = scene.camera_medium;
+        for depth in 0..scene.settings.max_depth {
+            let hit = scene.geometry.intersect(&ray, f32::INFINITY);
+            if let Some(m) = medium {
+                let seg_len = match &hit {
+                    Some(h) => h.t,
+                    None => scene.world_exit(&ray),
+                };
+                match self.medium_segment(m, &ray, seg_len, rng, out) {
+                    Segment::Reached => {}
+                    Segment::Ended => return,
+                    Segment::Scattered(s) => {
+                        // Light reaching the path after a medium scattering is class C light
+                        // that the volumes already gathered (method note 6).
+                        self.sees_emitters = false;
+                        let p = ray.o + ray.d * s;
+                        let u = Vec3::new(rng.random(), rng.random(), 0.0);
+                        let d = scene.media[m as usize].phase().sample(ray.d, u.truncate());
+                        ray = Ray { o: p, d };
+                        if !self.roulette(depth, rng) {
+                            return;
+                        }
+                        continue;
+                    }
+                }
+            }
+            let Some(hit) = hit else { return };
+            if !self.surface(&hit, &mut ray, &mut medium, rng, out) {
+                return;
+            }
+            if !self.roulette(depth, rng) {
+                return;
+            }
+        }
+    }
+
+    /// Russian roulette on the throughput after a few bounces.
+    fn roulette(&mut self, depth: u32, rng: &mut Rng) -> bool {
+        if depth < 3 {
+            return true;
+        }
+        let p = self.w.max_value().min(1.0);
+        if p <= 0.0 || rng.random::<f32>() >= p {
+            return false;
+        }
+        self.w *= 1.0 / p;
+        true
+    }
+
+    /// Handles a surface hit: emission, null boundaries, gathering on the diffuse part,
+    /// continuation through the non-diffuse part. Returns whether the path goes on.
+    fn surface(
+        &mut self,
+        hit: &Hit,
+        ray: &mut Ray,
+        medium: &mut Option<u32>,
+        rng: &mut Rng,
+        out: &mut CameraOutput,
+    ) -> bool {
+        let scene = self.scene;
+        let wo = -ray.d;
+        let shape = scene.geometry.shape(hit.shape);
+        if let Some(l) = shape.light {
+            if self.sees_emitters {
+                let le = scene.lights.lights()[l as usize].radiance(hit, wo);
+                if !le.is_zero() {
+                    out.direct.push((self.pixel, le * self.w));
+                }
+            }
+        }
+        let Some(mat_id) = shape.material else {
+            // Index-matched boundary: straight on, only the medium changes.
+            *medium = scene.geometry.medium_after(hit, ray.d);
+            *ray = spawn(hit.p, hit.ng, ray.d);
+            return true;
+        };
+        let material = &scene.materials[mat_id as usize];
+        let pd = material.diffuse_probability(wo, hit);
+        if pd > 0.0 && rng.random::<f32>() < pd {
+            let n = if hit.ns.dot(wo) >= 0.0 { hit.ns } else { -hit.ns };
+            let weight = out.push_weight(&(self.w * (1.0 / pd)), self.n);
+            out.surfaces.push(SurfaceRecord {
+                p: hit.p,
+                pixel: self.pixel,
+                n,
+                material: mat_id,
+                wo,
+                shape: hit.shape,
+                uv: hit.uv,
+                weight,
+            });
+            return false;
+        }
+        let u = Vec3::new(rng.random(), rng.random(), rng.random());
+        let Some(s) = material.sample_nondiffuse(wo, hit, u) else {
+            return false;
+        };
+        self.w *= s.weight * (1.0 / (1.0 - pd));
+        if self.w.is_zero() {
+            return false;
+        }
+        if s.wi.dot(hit.ng).signum() != wo.dot(hit.ng).signum() {
+            *medium = scene.geometry.medium_after(hit, s.wi);
+        }
+        *ray = spawn(hit.p, hit.ng, s.wi);
+        true
+    }
+
+    fn mixture(&self, m: u32) -> Mixture {
+        let s = &self.scene.settings;
+        let pick = match s.channel_pick {
+            ChannelPickDesc::Throughput => ChannelPick::Throughput,
+            ChannelPickDesc::Uniform => ChannelPick::Uniform,
+        };
+        let med = &self.scene.media[m as usize];
+        Mixture::new(&self.w, &med.sigma_t, self.n, pick, s.channel_floor)
+    }
+
+    fn volume(&self, out: &mut CameraOutput, start: Vec3, dir: Vec3, len: f32, m: u32, shape: VolumeShape, w: &Spectrum, extra: Option<&Spectrum>) {
+        let weight = out.push_weight(w, self.n);
+        if let Some(e) = extra {
+            out.push_weight(e, self.n);
+        }
+        let classes = match self.scene.settings.mode {
+            GatherMode::FirstExtinction => CLASS_ALL,
+            GatherMode::SeeThrough => CLASS_C,
+        };
+        out.volumes.push(VolumeRecord {
+            start,
+            pixel: self.pixel,
+            dir,
+            len,
+            medium: m as u16,
+            shape,
+            classes,
+            weight,
+        });
+    }
+
+    /// One straight camera segment of length `seg_len` inside medium `m` (method notes 2-5).
+    fn medium_segment(&mut self, m: u32, ray: &Ray, seg_len: f32, rng: &mut Rng, out: &mut CameraOutput) -> Segment {
+        let scene = self.scene;
+        let med = &scene.media[m as usize];
+        let settings = &scene.settings;
+        let mix = self.mixture(m);
+        let first_extinction = settings.mode == GatherMode::FirstExtinction;
+        if !self.gathering {
+            return self.free_flight(&mix, m, seg_len, rng);
+        }
+        if !first_extinction {
+            // See-through: volumes gather class C on this first medium segment only.
+            self.gathering = false;
+        }
+        match settings.volume {
+            VolumeKind::Spheres => {
+                let this = &*self;
+                let end = med.walk(&mix, settings.q, seg_len, rng, |s, w| {
+                    let w = this.w * *w;
+                    this.volume(out, ray.o + ray.d * s, ray.d, 0.0, m, VolumeShape::Sphere, &w, None);
+                });
+                self.after_walk(end, first_extinction)
+            }
+            VolumeKind::Cylinder | VolumeKind::CylinderLong => {
+                let shape = if settings.volume == VolumeKind::Cylinder { VolumeShape::Cylinder } else { VolumeShape::Long };
+                let w = self.w;
+                self.volume(out, ray.o, ray.d, seg_len, m, shape, &w, None);
+                if first_extinction {
+                    self.w *= med.sigma_t.transmittance(seg_len, self.n);
+                    Segment::Reached
+                } else {
+                    self.free_flight(&mix, m, seg_len, rng)
+                }
+            }
+            VolumeKind::CylinderTruncated => {
+                let s_e = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
+                let len = s_e.min(seg_len);
+                let w = self.w;
+                self.volume(out, ray.o, ray.d, len, m, VolumeShape::Truncated, &w, Some(&mix.p));
+                if s_e >= seg_len {
+                    self.w *= med.sigma_t.transmittance(seg_len, self.n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
+                    Segment::Reached
+                } else if first_extinction {
+                    Segment::Ended
+                } else {
+                    self.scatter_roulette(&mix, m, s_e, rng)
+                }
+            }
+        }
+    }
+
+    fn after_walk(&mut self, end: WalkEnd, first_extinction: bool) -> Segment {
+        match end {
+            WalkEnd::Transmitted { weight } => {
+                self.w *= weight;
+                Segment::Reached
+            }
+            WalkEnd::Absorbed { .. } => Segment::Ended,
+            WalkEnd::Scattered { s, weight } => {
+                if first_extinction {
+                    Segment::Ended
+                } else {
+                    self.w *= weight;
+                    Segment::Scattered(s)
+                }
+            }
+        }
+    }
+
+    /// Free flight without gathering: the continuation of a see-through path (note 4).
+    fn free_flight(&mut self, mix: &Mixture, m: u32, seg_len: f32, rng: &mut Rng) -> Segment {
+        let med = &self.scene.media[m as usize];
+        let s = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
+        if s >= seg_len {
+            self.w *= med.sigma_t.transmittance(seg_len, self.n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
+            return Segment::Reached;
+        }
+        self.scatter_roulette(mix, m, s, rng)
+    }
+
+    fn scatter_roulette(&mut self, mix: &Mixture, m: u32, s: f32, rng: &mut Rng) -> Segment {
+        let med = &self.scene.media[m as usize];
+        match med.scatter_or_absorb(mix, s, rng.random()) {
+            Some(update) => {
+                self.w *= update;
+                Segment::Scattered(s)
+            }
+            None => Segment::Ended,
+        }
+    }
+}

@@ -1,0 +1,208 @@
+//! The light (forward) pass: rays from the lights, traced through surfaces and media; every
+//! forward segment in a medium is tested against the integration volumes and every diffuse
+//! surface hit against the surface spheres.
+
+use std::f32::consts::PI;
+
+use glam::Vec3;
+use rand::Rng as _;
+use rayon::prelude::*;
+
+use super::gather::Gather;
+use super::record::{CLASS_C, CLASS_D, VolumeRecord, VolumeShape};
+use super::rng::{self, Domain, Rng};
+use super::volume;
+use crate::film::{Layer, PassBuffer};
+use crate::geometry::{Hit, Ray, spawn};
+use crate::material::LobeKind;
+use crate::medium::{ChannelPick, Mixture};
+use crate::scene::Scene;
+use crate::spectrum::Spectrum;
+
+/// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
+/// order (and so every bit of the image) does not depend on how many threads ran.
+pub fn chunk_size(total: u64) -> u64 {
+    (total / 256).clamp(4096, 1 << 20)
+}
+
+pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, norm: f32, buf: &mut PassBuffer) {
+    let total = scene.settings.forward_rays;
+    let chunk = chunk_size(total);
+    let chunks = total.div_ceil(chunk);
+    // Chunks in flight at once: bounds memory; it does not change the result.
+    let wave = (2 * rayon::current_num_threads() as u64).max(2);
+    let mut c0 = 0;
+    while c0 < chunks {
+        let c1 = (c0 + wave).min(chunks);
+        let parts: Vec<PassBuffer> = (c0..c1)
+            .into_par_iter()
+            .map(|c| {
+                let mut part = PassBuffer::new(buf.pixels, buf.n);
+                let mut rng = rng::stream(seed, pass, Domain::Light, c);
+                let rays = chunk.min(total - c * chunk);
+                let mut tracer = ForwardTracer { scene, gather, norm, buf: &mut part };
+                for _ in 0..rays {
+                    tracer.trace(&mut rng);
+                }
+                part
+            })
+            .collect();
+        for p in &parts {
+            buf.add(p);
+        }
+        c0 = c1;
+    }
+}
+
+struct ForwardTracer<'a> {
+    scene: &'a Scene,
+    gather: &'a Gather,
+    norm: f32,
+    buf: &'a mut PassBuffer,
+}
+
+impl ForwardTracer<'_> {
+    fn trace(&mut self, rng: &mut Rng) {
+        let scene = self.scene;
+        let n = scene.grid.n;
+        let u = [rng.random(), rng.random(), rng.random(), rng.random(), rng.random()];
+        let Some(es) = scene.lights.sample(&scene.geometry, u) else { return };
+        let mut ray = es.ray;
+        let mut flux = es.flux;
+        let flux0 = flux.max_value();
+        if !(flux0 > 0.0) || !flux.is_finite() {
+            return;
+        }
+        let mut class = CLASS_C;
+        let mut medium = scene.medium_at(ray.o);
+        for depth in 0..scene.settings.max_depth {
+            let hit = scene.geometry.intersect(&ray, f32::INFINITY);
+            if let Some(m) = medium {
+                let seg_len = match &hit {
+                    Some(h) => h.t,
+                    None => scene.world_exit(&ray),
+                };
+                let med = &scene.media[m as usize];
+                let mix = Mixture::new(&flux, &med.sigma_t, n, ChannelPick::Throughput, scene.settings.channel_floor);
+                let s = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
+                let len = s.min(seg_len);
+                self.gather_volumes(m, class, &ray, len, &flux);
+                if s < seg_len {
+                    // Collision: scattering with absorption by weight (mixture-weighted, note 4).
+                    flux *= med.collision_weight(&mix, s);
+                    if !self.roulette(&mut flux, flux0, depth, rng) {
+                        return;
+                    }
+                    let p = ray.o + ray.d * s;
+                    let d = med.phase().sample(ray.d, glam::Vec2::new(rng.random(), rng.random()));
+                    ray = Ray { o: p, d };
+                    continue;
+                }
+                flux *= med.sigma_t.transmittance(seg_len, n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
+            }
+            let Some(hit) = hit else { return };
+            let shape = scene.geometry.shape(hit.shape);
+            let Some(mat_id) = shape.material else {
+                medium = scene.geometry.medium_after(&hit, ray.d);
+                ray = spawn(hit.p, hit.ng, ray.d);
+                continue;
+            };
+            let material = &scene.materials[mat_id as usize];
+            let wo = -ray.d;
+            if material.diffuse_probability(wo, &hit) > 0.0 {
+                self.gather_surfaces(&hit, ray.d, &flux);
+            }
+            let u = Vec3::new(rng.random(), rng.random(), rng.random());
+            let Some(s) = material.sample(wo, &hit, u) else { return };
+            if s.kind == LobeKind::Diffuse {
+                class = CLASS_D;
+            }
+            flux *= s.weight;
+            if s.wi.dot(hit.ng).signum() != wo.dot(hit.ng).signum() {
+                medium = scene.geometry.medium_after(&hit, s.wi);
+            }
+            ray = spawn(hit.p, hit.ng, s.wi);
+            if !self.roulette(&mut flux, flux0, depth, rng) {
+                return;
+            }
+        }
+    }
+
+    fn roulette(&mut self, flux: &mut Spectrum, flux0: f32, depth: u32, rng: &mut Rng) -> bool {
+        if depth < 2 {
+            return flux.max_value() > 0.0;
+        }
+        let p = (flux.max_value() / flux0).min(1.0);
+        if !(p > 0.0) || rng.random::<f32>() >= p {
+            return false;
+        }
+        *flux *= 1.0 / p;
+        true
+    }
+
+    fn gather_surfaces(&mut self, hit: &Hit, v: Vec3, flux: &Spectrum) {
+        let scene = self.scene;
+        let n = scene.grid.n;
+        let gather = self.gather;
+        let wi = -v;
+        let ng = if hit.ng.dot(wi) >= 0.0 { hit.ng } else { -hit.ng };
+        let inv_area = 1.0 / (PI * gather.radius * gather.radius);
+        gather.surfaces_at(hit.p, |rec| {
+            // Same side of the same surface as the camera path's hit.
+            if rec.n.dot(wi) <= 0.0 || rec.n.dot(ng) < 0.5 {
+                return;
+            }
+            let at = Hit { t: 0.0, p: rec.p, ng: rec.n, ns: rec.n, uv: rec.uv, shape: rec.shape };
+            let f = scene.materials[rec.material as usize].eval_diffuse(rec.wo, wi, &at);
+            let factor = f * *flux * inv_area;
+            let w = gather.weight(rec.weight, n);
+            let norm = self.norm;
+            let slot = self.buf.slot(Layer::Surface, rec.pixel as usize);
+            for ((s, w), f) in slot.iter_mut().zip(w).zip(factor.0.iter()) {
+                *s += w * f * norm;
+            }
+        });
+    }
+
+    fn gather_volumes(&mut self, m: u32, class: u8, ray: &Ray, len: f32, flux: &Spectrum) {
+        let scene = self.scene;
+        let n = scene.grid.n;
+        let gather = self.gather;
+        let radius = gather.radius;
+        gather.volumes_along(ray.o, ray.d, len, |rec: &VolumeRecord| {
+            if rec.medium as u32 != m || rec.classes & class == 0 {
+                return;
+            }
+            let med = &scene.media[m as usize];
+            let f = med.phase().eval(ray.d.dot(-rec.dir));
+            let w = gather.weight(rec.weight, n);
+            let factor: Spectrum = match rec.shape {
+                VolumeShape::Sphere => {
+                    let g = volume::sphere_factor(rec.start, radius, ray.o, ray.d, len);
+                    if g <= 0.0 {
+                        return;
+                    }
+                    *flux * (f * g)
+                }
+                VolumeShape::Cylinder => {
+                    let Some(k) = volume::cylinder_eq2(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, n) else { return };
+                    *flux * k * f
+                }
+                VolumeShape::Long => {
+                    let Some(k) = volume::cylinder_eq3(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, n) else { return };
+                    *flux * k * f
+                }
+                VolumeShape::Truncated => {
+                    let p = gather.weight(rec.weight + n as u32, n);
+                    let Some(k) = volume::cylinder_truncated(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, &Spectrum::from_slice(p), n) else { return };
+                    *flux * k * f
+                }
+            };
+            let norm = self.norm;
+            let slot = self.buf.slot(Layer::Medium, rec.pixel as usize);
+            for ((s, w), f) in slot.iter_mut().zip(w).zip(factor.0.iter()) {
+                *s += w * f * norm;
+            }
+        });
+    }
+}

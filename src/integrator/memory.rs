@@ -1,0 +1,44 @@
+use crate::scene::desc::{SceneDesc, VolumeKind};
+
+/// Bytes of one gather record excluding its spectral weight (position, pixel, frame, radius
+/// and its share of the BVH).
+pub const GATHER_RECORD_BYTES: f64 = 64.0;
+
+/// What a render of a scene is expected to hold in memory, per pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MemoryEstimate {
+    pub gather_volumes: f64,
+    pub gather_bytes: f64,
+    pub film_bytes: f64,
+}
+
+impl MemoryEstimate {
+    /// An upper estimate: every camera path reaches a medium segment thick enough to hold its
+    /// full expected 1/q spheres (method note 2); surfaces add one sphere per path.
+    pub fn for_scene(d: &SceneDesc) -> Self {
+        let pixels = d.camera.width as f64 * d.camera.height as f64;
+        let paths = pixels * d.integrator.camera_samples as f64;
+        let per_path = if d.media.is_empty() {
+            1.0
+        } else {
+            match d.integrator.volume {
+                VolumeKind::Spheres => 1.0 + 1.0 / d.integrator.q as f64,
+                _ => 2.0,
+            }
+        };
+        let gather_volumes = paths * per_path;
+        let bins = d.film.bins as f64;
+        let gather_bytes = gather_volumes * (GATHER_RECORD_BYTES + 4.0 * bins);
+        // Running sums and sums of squares in f64 per pixel and bin, plus component layers.
+        let film_bytes = pixels * bins * 8.0 * 4.0;
+        Self {
+            gather_volumes,
+            gather_bytes,
+            film_bytes,
+        }
+    }
+
+    pub fn total(&self) -> f64 {
+        self.gather_bytes + self.film_bytes
+    }
+}

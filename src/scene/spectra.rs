@@ -1,0 +1,100 @@
+//! Turning the scene's spectrum references into per-bin values, in the way each parameter needs
+//! (reflectances bounded, emission illuminant-shaped, coefficients unbounded).
+
+use std::collections::BTreeMap;
+
+use super::LoadedScene;
+use super::desc::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::error::{KeyText, Origin, SceneError};
+use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
+
+pub struct SpectrumResolver<'a> {
+    scene: &'a LoadedScene,
+    grid: SpectralGrid,
+    named: &'a BTreeMap<String, SpectrumDesc>,
+}
+
+impl<'a> SpectrumResolver<'a> {
+    pub fn new(scene: &'a LoadedScene, grid: SpectralGrid) -> Self {
+        Self {
+            scene,
+            grid,
+            named: &scene.desc.spectra,
+        }
+    }
+
+    fn error(&self, key: &str, message: String) -> SceneError {
+        SceneError::Invalid {
+            origin: Origin::File {
+                file: self.scene.file.clone(),
+                line: None,
+            },
+            key: KeyText(key.to_string()),
+            message,
+        }
+    }
+
+    /// A reference whose RGB form means `kind`.
+    pub fn resolve(&self, r: &SpectrumRef, kind: RgbKind, key: &str) -> Result<Spectrum, SceneError> {
+        match r {
+            SpectrumRef::Constant(v) => Ok(spectrum::constant(*v as f32, &self.grid)),
+            SpectrumRef::Rgb(rgb) => Ok(self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], kind)),
+            SpectrumRef::Named(name) => match self.named.get(name) {
+                Some(desc) => self.named_spectrum(name, desc, kind),
+                None => self.file_or_builtin(name, None, key),
+            },
+        }
+    }
+
+    fn file_or_builtin(&self, spec: &str, column: Option<&str>, key: &str) -> Result<Spectrum, SceneError> {
+        // Relative files resolve from the scene's folder; built-in names are tried first.
+        let resolved = if spectrum::builtin_table(spec.split(':').next().unwrap_or(spec)).is_some() {
+            spec.to_string()
+        } else {
+            self.scene.resolve(spec).to_string_lossy().into_owned()
+        };
+        let data = spectrum::resolve(&resolved, column, false).map_err(|e| self.error(key, e.to_string()))?;
+        Ok(data.bin_averages(&self.grid, Extrapolation::Clamp))
+    }
+
+    fn named_spectrum(&self, name: &str, d: &SpectrumDesc, kind: RgbKind) -> Result<Spectrum, SceneError> {
+        let key = format!("spectra.{name}");
+        let base = if let Some(f) = &d.file {
+            self.file_or_builtin(f, d.column.as_deref(), &format!("{key}.file"))?
+        } else if let Some(b) = &d.builtin {
+            self.file_or_builtin(b, d.column.as_deref(), &format!("{key}.builtin"))?
+        } else if let Some(v) = d.value {
+            spectrum::constant(v as f32, &self.grid)
+        } else if let Some(rgb) = d.rgb {
+            // The spectrum's own rgb_kind wins over the use site's.
+            let _ = kind;
+            self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], d.rgb_kind)
+        } else if let Some(p) = &d.power_law {
+            spectrum::power_law(p.k, p.lambda_ref, p.p, &self.grid)
+        } else {
+            return Err(self.error(&key, "no source given".into()));
+        };
+        Ok(base * d.scale.unwrap_or(1.0) as f32)
+    }
+
+    fn rgb(&self, rgb: [f32; 3], kind: RgbKind) -> Spectrum {
+        spectrum::rgb_to_spectrum(rgb, kind.into(), &self.grid)
+    }
+
+    pub fn reflectance(&self, r: &SpectrumRef, key: &str) -> Result<Spectrum, SceneError> {
+        self.resolve(r, RgbKind::Reflectance, key)
+    }
+
+    pub fn emission(&self, r: &SpectrumRef, key: &str) -> Result<Spectrum, SceneError> {
+        self.resolve(r, RgbKind::Emission, key)
+    }
+
+    pub fn unbounded(&self, r: &SpectrumRef, key: &str) -> Result<Spectrum, SceneError> {
+        self.resolve(r, RgbKind::Unbounded, key)
+    }
+
+    /// Texel conversion for textures (sRGB-encoded values already decoded to linear).
+    pub fn rgb_reflectance(&self, rgb: [f32; 3]) -> Spectrum {
+        self.rgb(rgb, RgbKind::Reflectance)
+    }
+}

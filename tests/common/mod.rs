@@ -1,0 +1,83 @@
+//! Helpers shared by the engine tests: render a scene given as TOML text and measure regions.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use brume::film::SpectralImage;
+use brume::integrator::{Budget, Renderer};
+use brume::scene::{Scene, build, load_str};
+
+pub fn scene(text: &str, sets: &[&str]) -> Scene {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
+    let loaded = load_str(text, &dir, &sets).unwrap_or_else(|e| panic!("{e}"));
+    build(&loaded).unwrap_or_else(|e| panic!("{e}"))
+}
+
+pub fn render(scene: &Scene, seed: u64, passes: u32) -> SpectralImage {
+    let mut r = Renderer::new(scene, seed);
+    r.run(Budget::Passes(passes), |_, _| {});
+    r.image()
+}
+
+/// Mean per bin over the pixel rectangle [x0, x1) x [y0, y1) of `data` (one of the image's layers).
+pub fn region_mean(img: &SpectralImage, data: &[f32], x0: usize, x1: usize, y0: usize, y1: usize) -> Vec<f64> {
+    let n = img.grid.n;
+    let mut acc = vec![0.0f64; n];
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let i = (y * img.width + x) * n;
+            for b in 0..n {
+                acc[b] += data[i + b] as f64;
+            }
+        }
+    }
+    let count = ((x1 - x0) * (y1 - y0)) as f64;
+    acc.iter().map(|a| a / count).collect()
+}
+
+/// Independent renders (different seeds) of a region's per-bin mean: (mean, standard error).
+pub fn independent_estimates(
+    scene: &Scene,
+    runs: u64,
+    passes: u32,
+    region: (usize, usize, usize, usize),
+) -> (Vec<f64>, Vec<f64>) {
+    let n = scene.grid.n;
+    let mut samples: Vec<Vec<f64>> = Vec::new();
+    for seed in 0..runs {
+        let img = render(scene, 1000 + seed, passes);
+        samples.push(region_mean(&img, &img.data, region.0, region.1, region.2, region.3));
+    }
+    mean_and_se(&samples, n)
+}
+
+pub fn mean_and_se(samples: &[Vec<f64>], n: usize) -> (Vec<f64>, Vec<f64>) {
+    let k = samples.len() as f64;
+    let mut mean = vec![0.0; n];
+    let mut se = vec![0.0; n];
+    for b in 0..n {
+        let m = samples.iter().map(|s| s[b]).sum::<f64>() / k;
+        let var = samples.iter().map(|s| (s[b] - m).powi(2)).sum::<f64>() / (k - 1.0);
+        mean[b] = m;
+        se[b] = (var / k).sqrt();
+    }
+    (mean, se)
+}
+
+/// Asserts |mean - expected| <= z * se per bin (with a small relative floor for the
+/// estimator's kernel bias), printing the table.
+pub fn assert_bins(name: &str, mean: &[f64], se: &[f64], expected: &[f64], z: f64, rel_floor: f64) {
+    for b in 0..mean.len() {
+        let tol = z * se[b] + rel_floor * expected[b].abs();
+        let zs = (mean[b] - expected[b]) / se[b].max(1e-300);
+        eprintln!("{name} bin {b}: got {:.6e} expected {:.6e} se {:.2e} z {:.2}", mean[b], expected[b], se[b], zs);
+        assert!(
+            (mean[b] - expected[b]).abs() <= tol,
+            "{name} bin {b}: {} vs {} (se {}, z {zs:.2})",
+            mean[b],
+            expected[b],
+            se[b]
+        );
+    }
+}

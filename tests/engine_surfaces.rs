@@ -1,0 +1,273 @@
+//! The surface engine against analytic radiance: integration spheres on diffuse surfaces
+//! gathering forward rays (paper sections 1-2; method note 1 on surfaces). Fixed seeds; each
+//! comparison is per spectral bin with a stated z-bound.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use brume::spectrum::{SpectralGrid, power_law};
+use common::*;
+
+const Z: f64 = 4.0;
+
+/// Lambert quad of spectral albedo rho under a directional light of irradiance E at angle
+/// theta, orthographic camera: L = rho E cos(theta) / pi in every bin.
+#[test]
+fn lambert_quad_under_directional_light() {
+    let theta: f64 = 30f64.to_radians();
+    let text = format!(
+        r#"
+[film]
+bins = 8
+[camera]
+type = "orthographic"
+width = 24
+height = 24
+position = [0, 0, 2]
+look_at = [0, 0, 0]
+view_width = 0.8
+view_height = 0.8
+[integrator]
+radius = 0.02
+forward_rays = 100000
+[spectra.rho]
+power_law = {{ k = 0.5, p = 1.0 }}
+[materials.paper]
+type = "lambert"
+albedo = "rho"
+[[shapes]]
+type = "quad"
+size = [1, 1]
+material = "paper"
+[[lights]]
+type = "directional"
+direction = [{}, 0, {}]
+irradiance = 2.0
+spectrum = 1.0
+"#,
+        theta.sin(),
+        -theta.cos()
+    );
+    let scene = scene(&text, &[]);
+    let grid = SpectralGrid::new(8, 380.0, 780.0);
+    let rho = power_law(0.5, 550.0, 1.0, &grid);
+    let e_per_nm = 2.0 / 400.0;
+    let expected: Vec<f64> = (0..8).map(|b| rho[b] as f64 * e_per_nm * theta.cos() / PI).collect();
+    let (mean, se) = independent_estimates(&scene, 6, 2, (0, 24, 0, 24));
+    assert_bins("lambert", &mean, &se, &expected, Z, 0.0);
+}
+
+/// Near the quad's edge a sphere loses the part of its disc beyond the edge: the estimate is
+/// darker there, and the dark band narrows with R.
+#[test]
+fn edge_bias_shrinks_with_radius() {
+    let text = r#"
+[film]
+bins = 4
+[camera]
+type = "orthographic"
+width = 40
+height = 4
+position = [0.45, 0, 2]
+look_at = [0.45, 0, 0]
+view_width = 0.2
+view_height = 0.02
+[integrator]
+forward_rays = 100000
+[materials.paper]
+type = "lambert"
+albedo = 0.5
+[[shapes]]
+type = "quad"
+size = [1, 1]
+material = "paper"
+[[lights]]
+type = "directional"
+direction = [0, 0, -1]
+irradiance = 1.0
+spectrum = 1.0
+"#;
+    // The view covers x in [0.35, 0.55]; the quad ends at x = 0.5 (pixel 30). Pixels 20..30
+    // lie within 0.05 of the edge.
+    let deficit = |r: &str| {
+        let s = scene(text, &[&format!("integrator.radius={r}")]);
+        let img = render(&s, 7, 4);
+        let inner = region_mean(&img, &img.data, 0, 10, 0, 4)[0];
+        let edge = region_mean(&img, &img.data, 20, 30, 0, 4)[0];
+        1.0 - edge / inner
+    };
+    let big = deficit("0.05");
+    let small = deficit("0.01");
+    eprintln!("edge deficit: R=0.05 -> {big:.4}, R=0.01 -> {small:.4}");
+    // Analytic mean deficit of the band for R = 0.05 is about 0.11 (disc cut by the edge).
+    assert!(big > 0.06, "large radius should darken the edge band: {big}");
+    assert!(small < big / 3.0, "edge bias must shrink with R: {small} vs {big}");
+}
+
+fn point_light_scene(radius: f64, alpha: f64) -> String {
+    format!(
+        r#"
+[film]
+bins = 4
+[camera]
+type = "orthographic"
+width = 8
+height = 8
+position = [0, 3, 0]
+look_at = [0, 0, 0]
+up = [0, 0, -1]
+view_width = 0.2
+view_height = 0.2
+[integrator]
+radius = {radius}
+alpha = {alpha}
+forward_rays = 100000
+[materials.floor]
+type = "lambert"
+albedo = 0.5
+[[shapes]]
+type = "quad"
+size = [6, 6]
+material = "floor"
+transform = {{ rotate = [-90, 0, 0] }}
+[[lights]]
+type = "point"
+position = [0, 0.5, 0]
+power = 10.0
+spectrum = 1.0
+"#
+    )
+}
+
+/// Irradiance under a point light of intensity I at height h: E = I cos^3(theta) / h^2.
+/// The estimate at a point is E averaged over the sphere's disc; with R = 0.15 that blur is a
+/// clear negative bias at the peak, which the test predicts by quadrature, and progressive
+/// radius reduction removes.
+#[test]
+fn point_light_above_plane_and_progressive_radius() {
+    let h = 0.5f64;
+    let intensity_per_nm = 10.0 / (4.0 * PI) / 400.0;
+    let rho = 0.5;
+    let irradiance = |x: f64, z: f64| intensity_per_nm * h / (h * h + x * x + z * z).powf(1.5);
+    // Mean over the viewed square [-0.1, 0.1]^2 of E blurred by a disc of radius r.
+    let expected = |r: f64| {
+        let (m, k) = (40, 24);
+        let mut acc = 0.0;
+        for i in 0..m {
+            for j in 0..m {
+                let x = -0.1 + 0.2 * (i as f64 + 0.5) / m as f64;
+                let z = -0.1 + 0.2 * (j as f64 + 0.5) / m as f64;
+                if r == 0.0 {
+                    acc += irradiance(x, z);
+                    continue;
+                }
+                let mut disc = 0.0;
+                for a in 0..k {
+                    for b in 0..k {
+                        // Uniform disc samples on a polar grid (area-weighted radii).
+                        let rr = r * ((a as f64 + 0.5) / k as f64).sqrt();
+                        let phi = 2.0 * PI * (b as f64 + 0.5) / k as f64;
+                        disc += irradiance(x + rr * phi.cos(), z + rr * phi.sin());
+                    }
+                }
+                acc += disc / (k * k) as f64;
+            }
+        }
+        rho / PI * acc / (m * m) as f64
+    };
+    let exact = expected(0.0);
+    let blurred = expected(0.15);
+    eprintln!("exact {exact:.6e}, blurred by R=0.15 {blurred:.6e} ({:.2}% low)", 100.0 * (1.0 - blurred / exact));
+
+    // Fixed small radius: unbiased up to a tiny blur.
+    let s = scene(&point_light_scene(0.01, 1.0), &[]);
+    let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
+    let small = expected(0.01);
+    assert_bins("point R=0.01", &mean, &se, &vec![small; 4], Z, 0.0);
+
+    // Fixed large radius: the estimate matches the blurred value, not the exact one.
+    let s = scene(&point_light_scene(0.15, 1.0), &[]);
+    let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
+    assert_bins("point R=0.15 blurred", &mean, &se, &vec![blurred; 4], Z, 0.0);
+    let z_exact = (mean[0] - exact) / se[0];
+    assert!(z_exact < -6.0, "a large fixed radius must be measurably biased (z = {z_exact})");
+
+    // Progressive reduction from the same radius: after 64 passes R has shrunk about 8x and
+    // the bias with it.
+    let s = scene(&point_light_scene(0.15, 0.5), &["integrator.forward_rays=20000"]);
+    let img = render(&s, 3, 64);
+    let prog = region_mean(&img, &img.data, 0, 8, 0, 8)[0];
+    let bias_fixed = exact - blurred;
+    let bias_prog = exact - prog;
+    eprintln!("bias fixed {bias_fixed:.3e}, progressive {bias_prog:.3e}");
+    assert!(bias_prog.abs() < 0.35 * bias_fixed, "progressive radius must shrink the bias");
+}
+
+/// A parallel beam turned down by a 45-degree mirror onto a floor: the forward rays pass the
+/// specular bounce and are gathered at the diffuse receiver, L = rho R_m E / pi (the value of a
+/// floor lit directly by the reflected beam).
+#[test]
+fn mirror_caustic_conserves_energy() {
+    let text = r#"
+[film]
+bins = 4
+[camera]
+type = "orthographic"
+width = 8
+height = 8
+position = [-2, 2, 0]
+look_at = [0, 0, 0]
+view_width = 0.12
+view_height = 0.12
+[integrator]
+radius = 0.01
+forward_rays = 200000
+[materials.floor]
+type = "lambert"
+albedo = 0.6
+[materials.mirror]
+type = "mirror"
+albedo = 0.9
+[[shapes]]
+type = "quad"
+size = [4, 4]
+material = "floor"
+transform = { rotate = [-90, 0, 0] }
+[[shapes]]
+type = "quad"
+size = [0.5, 0.5]
+material = "mirror"
+transform = { rotate = [0, -90, 45], translate = [0, 1, 0] }
+[[lights]]
+type = "directional"
+direction = [1, 0, 0]
+irradiance = 4.0
+spectrum = 1.0
+"#;
+    let s = scene(text, &[]);
+    let expected = 0.6 * 0.9 * (4.0 / 400.0) / PI;
+    let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
+    assert_bins("caustic", &mean, &se, &vec![expected; 4], Z, 0.0);
+}
+
+/// The same seed renders the same bits with 1 and 2 threads.
+#[test]
+fn deterministic_across_thread_counts() {
+    let text = point_light_scene(0.05, 0.7);
+    let s = scene(&text, &["integrator.forward_rays=30000"]);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        pool.install(|| render(&s, 42, 3))
+    };
+    let a = run(1);
+    let b = run(2);
+    let bits = |img: &brume::film::SpectralImage| img.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&a), bits(&b));
+    let c = pool_other_seed(&s);
+    assert_ne!(bits(&a), bits(&c), "a different seed must give a different image");
+}
+
+fn pool_other_seed(s: &brume::scene::Scene) -> brume::film::SpectralImage {
+    render(s, 43, 3)
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Runs every test brume has, from a fresh clone: formatting, clippy, the Rust test suite, and
+# the Python reference checks (colour-science, OpenColorIO, OpenEXR) in a virtualenv under
+# .venv that this script creates. Needs only Rust (cargo) and Python 3 with venv.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+echo "== python virtualenv (.venv)"
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --upgrade pip
+.venv/bin/python -m pip install --quiet -r tests/python/requirements.txt
+
+echo "== cargo fmt --check"
+cargo fmt --all -- --check
+
+echo "== cargo clippy"
+cargo clippy --all-targets -- -D warnings
+
+echo "== cargo test"
+cargo test
+
+echo "== python reference checks"
+cargo build --bins --examples
+export BRUME_BIN="$PWD/target/debug/brume"
+export BRUME_COLOUR_CHART="$PWD/target/debug/examples/colour_chart"
+.venv/bin/python -m pytest tests/python -q
