@@ -1,1 +1,2 @@
 //! integrator (see docs/architecture.md).
+pub mod volume;
