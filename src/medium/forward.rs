@@ -51,7 +51,7 @@ impl ForwardFlight {
 
     /// True if the flight leaves the segment before colliding.
     pub fn escapes(&self) -> bool {
-        !(self.t < self.seg_len)
+        self.t >= self.seg_len || self.t.is_nan()
     }
 
     /// Length of the forward segment actually travelled: the collision distance or the segment
@@ -86,14 +86,14 @@ impl ForwardFlight {
             return FlightEnd::Escaped;
         }
         let e = self.mix.eval(self.t);
-        if !(e.pdf > 0.0) {
+        if e.pdf.is_nan() || e.pdf <= 0.0 {
             return FlightEnd::Killed { t: self.t };
         }
         *flux *= medium.sigma_s * e.tr * (1.0 / e.pdf);
         let m = flux.max_value();
         if m < rr_threshold {
             let p = m / rr_threshold;
-            if !(rng.random::<f32>() < p) {
+            if rng.random::<f32>() >= p {
                 *flux = Spectrum::ZERO;
                 return FlightEnd::Killed { t: self.t };
             }

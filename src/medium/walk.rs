@@ -88,7 +88,7 @@ impl MultiSphereWalk {
         let mut s = 0.0f32;
         loop {
             s += mix.exp_step(l0, rate_scale, rng.random());
-            if !(s < seg_len) {
+            if s >= seg_len || s.is_nan() {
                 return transmitted(mix, seg_len);
             }
             let e = mix.eval(s);
@@ -116,7 +116,7 @@ pub fn sample_extinction<R: Rng + ?Sized>(
     rng: &mut R,
 ) -> WalkEnd {
     let s = mix.sample_distance(rng.random(), rng.random());
-    if !(s < seg_len) {
+    if s >= seg_len || s.is_nan() {
         return transmitted(mix, seg_len);
     }
     let e = mix.eval(s);

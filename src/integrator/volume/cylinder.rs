@@ -72,7 +72,7 @@ pub fn segment_cylinder(
     let mut hi = len;
     if a > PARALLEL_EPS {
         let disc = b * b - a * c;
-        if !(disc > 0.0) {
+        if disc.is_nan() || disc <= 0.0 {
             return None;
         }
         // Cancellation-free roots of a lam² + 2 b lam + c.
@@ -92,7 +92,7 @@ pub fn segment_cylinder(
     } else if a0 < 0.0 || a0 > axis.len {
         return None;
     }
-    if !(lo < hi) {
+    if lo.is_nan() || hi.is_nan() || lo >= hi {
         return None;
     }
     Some(CylinderChord {

@@ -37,7 +37,7 @@ pub fn segment_sphere(o: Vec3, v: Vec3, len: f32, c: Vec3, r: f32) -> Option<Sph
     // far-away origins do not cancel.
     let perp = oc - v * b;
     let h2 = r * r - perp.length_squared();
-    if !(h2 > 0.0) {
+    if h2.is_nan() || h2 <= 0.0 {
         return None;
     }
     let h = h2.sqrt();
@@ -45,7 +45,7 @@ pub fn segment_sphere(o: Vec3, v: Vec3, len: f32, c: Vec3, r: f32) -> Option<Sph
     let t1 = -b + h;
     let lam_in = t0.max(0.0);
     let lam_out = t1.min(len);
-    if !(lam_in < lam_out) {
+    if lam_in.is_nan() || lam_out.is_nan() || lam_in >= lam_out {
         return None;
     }
     Some(SphereChord {
