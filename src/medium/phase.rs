@@ -14,9 +14,9 @@ pub struct HenyeyGreenstein {
     g: f32,
 }
 
-/// Below this |g| sampling is uniform; the error of doing so is O(g) in cos and well below f32
-/// noise of the exact formula's evaluation.
-const G_ISOTROPIC: f32 = 1e-6;
+/// Switch between the two forms of the inverse CDF (see `sample_cos`); at this |g| both are
+/// accurate to ~1e-6 in cos.
+const G_SMALL: f32 = 0.05;
 
 impl HenyeyGreenstein {
     pub fn new(g: f32) -> Result<Self, MediumError> {
@@ -47,19 +47,23 @@ impl HenyeyGreenstein {
 
     /// Samples the cosine from a uniform `xi` in [0, 1), exactly (inverse CDF).
     ///
-    /// The textbook inverse `(1 + g² - s²)/(2g)` cancels catastrophically for small g; this is
-    /// the same function rearranged (t = 2 xi - 1) so that nothing cancels and g = 0 gives
-    /// `cos = t` continuously, and |g| -> 1 stays finite.
+    /// Two algebraically equal forms of the inverse, each used where it is well conditioned:
+    /// the textbook `(1 + g² - s²)/(2g)`, `s = (1-g²)/(1-g+2g xi)`, cancels for small |g| (error
+    /// ~ eps/|g|), so below `G_SMALL` it is rearranged (t = 2 xi - 1) into a form without the
+    /// 1/g that is continuous at g = 0 (`cos = t`); that form in turn cancels near cos = 1 when
+    /// |g| -> 1, where the textbook form is accurate.
     #[inline]
     pub fn sample_cos(&self, xi: f32) -> f32 {
         let g = self.g;
         let t = 2.0 * xi - 1.0;
-        if g.abs() < G_ISOTROPIC {
-            return t;
-        }
-        let d = 1.0 + g * t;
-        let num = t + 0.5 * g * (3.0 - g * g + t * t * (1.0 + g * g) + 2.0 * g * t);
-        (num / (d * d)).clamp(-1.0, 1.0)
+        let c = if g.abs() < G_SMALL {
+            let d = 1.0 + g * t;
+            (t + 0.5 * g * (3.0 - g * g + t * t * (1.0 + g * g) + 2.0 * g * t)) / (d * d)
+        } else {
+            let s = (1.0 - g) * (1.0 + g) / (1.0 + g * t);
+            (1.0 + g * g - s * s) / (2.0 * g)
+        };
+        c.clamp(-1.0, 1.0)
     }
 
     /// Samples a new propagation direction given the incoming propagation direction `w`
