@@ -11,7 +11,9 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::medium::{ChannelPick, HomogeneousMedium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction};
+use brume::medium::{
+    ChannelPick, HomogeneousMedium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction,
+};
 use brume::spectrum::Spectrum;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -29,7 +31,13 @@ const I: [f64; N] = [1.0, 0.8, 1.2, 2.0];
 fn medium() -> HomogeneousMedium {
     let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
     let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    HomogeneousMedium::new(&Spectrum::from_slice(&ss), &Spectrum::from_slice(&sa), 0.0, N).unwrap()
+    HomogeneousMedium::new(
+        &Spectrum::from_slice(&ss),
+        &Spectrum::from_slice(&sa),
+        0.0,
+        N,
+    )
+    .unwrap()
 }
 
 /// Light side, written independently of the library: analog transport in bin `l` of a particle
@@ -106,13 +114,20 @@ fn camera(walk: Option<MultiSphereWalk>, paths: usize, seed: u64) -> Acc {
 fn continued_camera_paths_match_brute_force_per_bin() {
     let mut rng = Pcg64Mcg::seed_from_u64(500);
     let reference: Vec<(f64, f64)> = (0..N).map(|l| brute_force(l, 400_000, &mut rng)).collect();
-    for (k, walk) in [None, Some(MultiSphereWalk::new(0.3).unwrap())].into_iter().enumerate() {
+    for (k, walk) in [None, Some(MultiSphereWalk::new(0.3).unwrap())]
+        .into_iter()
+        .enumerate()
+    {
         let acc = camera(walk, 300_000, 510 + k as u64);
         for l in 0..N {
             let (p, se) = reference[l];
             let (r, rse) = (p * I[l], se * I[l]);
             let z = (acc.mean(l) - r) / (acc.se(l).powi(2) + rse.powi(2)).sqrt();
-            assert!(z.abs() < 4.0, "walk {k} bin {l}: camera {} vs brute force {r} (z={z})", acc.mean(l));
+            assert!(
+                z.abs() < 4.0,
+                "walk {k} bin {l}: camera {} vs brute force {r} (z={z})",
+                acc.mean(l)
+            );
         }
     }
 }
