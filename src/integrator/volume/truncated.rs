@@ -22,11 +22,12 @@ pub fn cylinder_truncated(
 ) -> Spectrum {
     let k = 1.0 / (PI * r * r);
     let c = chord.len();
-    let span = cam.sigma_t_span() * (chord.tau2 - chord.tau1).abs()
-        + fwd.map_or(0.0, |m| m.sigma_t_span() * c);
-    if span == 0.0 {
+    let (cam_span, fwd_span) = (cam.sigma_t_span(), fwd.map_or(0.0, |m| m.sigma_t_span()));
+    if cam_span == 0.0 && fwd_span == 0.0 {
+        // Grey: every survival ratio is 1.
         return medium.sigma_s * (k * c);
     }
+    let span = cam_span * (chord.tau2 - chord.tau1).abs() + fwd_span * c;
     let integral = chord_integral(c, panels_for(span), |x| {
         let tau = chord.tau1 + chord.uv * x;
         let cw = cam.survival_weight(tau);
