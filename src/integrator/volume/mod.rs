@@ -19,5 +19,5 @@ pub use bounds::{Aabb, capsule_aabb, cylinder_aabb, segment_aabb, sphere_aabb};
 pub use cylinder::{CameraAxis, CylinderChord, cylinder_eq2, eq2_factor, segment_cylinder};
 pub use long::{long_eq3_exact, long_eq3_paper};
 pub use quadrature::{GL4_NODES, GL4_WEIGHTS, chord_integral, panels_for};
-pub use sphere::{SphereChord, crossing_density, segment_sphere};
+pub use sphere::{SphereChord, crossing_density, segment_sphere, track_length_density};
 pub use truncated::{cylinder_eq2_fwd, cylinder_truncated};
