@@ -11,7 +11,8 @@ use std::f32::consts::PI;
 ///
 /// NOT FOR RENDERING: `tests/estimator_long.rs` shows it agrees with eq. 2 only when the forward
 /// ray moves away from the camera (`u.v >= 0`); for `u.v < 0` the right denominator is
-/// `1 - |u.v|`, see [`long_eq3_exact`].
+/// `1 - |u.v|`, see [`long_eq3_exact`]. (Pairing point 1 with the forward entry instead does not
+/// save it: the sign is then right but the value is off by `(1 - |u.v|)/(1 + |u.v|)`.)
 pub fn long_eq3_paper(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -> Spectrum {
     let (ta, la, tb, lb) = if chord.tau1 <= chord.tau2 {
         (chord.tau1, chord.lam1, chord.tau2, chord.lam2)
