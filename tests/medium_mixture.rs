@@ -76,9 +76,9 @@ fn pick_frequencies_and_distance_density_match() {
             below[k] += (s < x) as u64;
         }
     }
-    for l in 0..4 {
+    for (l, &count) in picks.iter().enumerate() {
         let p = mix.probabilities()[l] as f64;
-        let z = (picks[l] as f64 / n as f64 - p) / (p * (1.0 - p) / n as f64).sqrt();
+        let z = (count as f64 / n as f64 - p) / (p * (1.0 - p) / n as f64).sqrt();
         assert!(z.abs() < 4.0, "bin {l}: z={z}");
     }
     for (k, &x) in xs.iter().enumerate() {
