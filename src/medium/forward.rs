@@ -60,6 +60,7 @@ impl ForwardFlight {
         self.t.min(self.seg_len)
     }
 
+    /// The flight's spectral mixture (for colour gather weights along the segment).
     pub fn mixture(&self) -> &Mixture {
         &self.mix
     }

@@ -8,15 +8,21 @@ use crate::spectrum::{MAX_BINS, Spectrum};
 /// validates, so that the invariants hold.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HomogeneousMedium {
+    /// Scattering coefficient per bin (1/m).
     pub sigma_s: Spectrum,
+    /// Absorption coefficient per bin (1/m).
     pub sigma_a: Spectrum,
+    /// Extinction `sigma_s + sigma_a` per bin (1/m).
     pub sigma_t: Spectrum,
+    /// Phase function.
     pub phase: HenyeyGreenstein,
     /// Number of active spectral bins.
     pub n: usize,
 }
 
 impl HomogeneousMedium {
+    /// Validates (`n` in 1..=MAX_BINS, coefficients finite and >= 0 in the first `n` bins,
+    /// |g| < 1) and zeroes the lanes past `n`.
     pub fn new(
         sigma_s: &Spectrum,
         sigma_a: &Spectrum,
@@ -47,6 +53,7 @@ impl HomogeneousMedium {
         })
     }
 
+    /// Henyey–Greenstein asymmetry.
     pub fn g(&self) -> f32 {
         self.phase.g()
     }

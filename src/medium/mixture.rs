@@ -1,8 +1,10 @@
 use super::HomogeneousMedium;
 use crate::spectrum::Spectrum;
 
-/// How the stepping bin `l0` of a segment is chosen (scene option `channel_pick`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+/// How the stepping bin `l0` of a segment is chosen (scene option `channel_pick`:
+/// `"throughput"` | `"uniform"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum ChannelPick {
     /// `P_l ∝ W_l` (the path's throughput or the forward ray's flux), mixed with a uniform floor.
     #[default]
@@ -85,6 +87,7 @@ impl Mixture {
         Self { p, st, st_min, n }
     }
 
+    /// The pick probabilities `P_l` (zero past the active bins).
     pub fn probabilities(&self) -> &Spectrum {
         &self.p
     }
@@ -95,6 +98,7 @@ impl Mixture {
         self.st.0[..self.n].iter().copied().fold(0.0, f32::max) - self.st_min
     }
 
+    /// Number of active bins.
     pub fn n(&self) -> usize {
         self.n
     }

@@ -19,6 +19,7 @@ pub struct HenyeyGreenstein {
 const G_SMALL: f32 = 0.05;
 
 impl HenyeyGreenstein {
+    /// `g` must be finite with |g| < 1.
     pub fn new(g: f32) -> Result<Self, MediumError> {
         if g.is_finite() && g.abs() < 1.0 {
             Ok(Self { g })
@@ -27,6 +28,7 @@ impl HenyeyGreenstein {
         }
     }
 
+    /// Asymmetry parameter (mean cosine).
     pub fn g(&self) -> f32 {
         self.g
     }

@@ -58,6 +58,7 @@ impl MultiSphereWalk {
         Ok(w)
     }
 
+    /// The control parameter q.
     pub fn q(&self) -> f32 {
         self.q
     }

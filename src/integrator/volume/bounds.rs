@@ -4,10 +4,13 @@ use glam::Vec3;
 /// the call site).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Lower corner.
     pub min: Vec3,
+    /// Upper corner.
     pub max: Vec3,
 }
 
+/// Box of the sphere of centre `c`, radius `r`.
 pub fn sphere_aabb(c: Vec3, r: f32) -> Aabb {
     Aabb {
         min: c - Vec3::splat(r),

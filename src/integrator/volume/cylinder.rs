@@ -6,6 +6,7 @@ use std::f32::consts::PI;
 /// The axis of an integration cylinder: a camera segment in a medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraAxis {
+    /// Where the camera segment starts (tau = 0).
     pub origin: Vec3,
     /// Unit direction `u` (camera -> scene).
     pub dir: Vec3,
@@ -28,10 +29,12 @@ pub struct CylinderChord {
 }
 
 impl CylinderChord {
+    /// Chord length `lam2 - lam1`.
     pub fn len(&self) -> f32 {
         self.lam2 - self.lam1
     }
 
+    /// True for a zero-length chord.
     pub fn is_empty(&self) -> bool {
         self.lam2 <= self.lam1
     }
@@ -41,6 +44,7 @@ impl CylinderChord {
         self.uv.abs()
     }
 
+    /// The smaller axial position (the chord's point nearest the camera).
     pub fn tau_min(&self) -> f32 {
         self.tau1.min(self.tau2)
     }

@@ -13,10 +13,12 @@ pub struct SphereChord {
 }
 
 impl SphereChord {
+    /// Length of the part inside.
     pub fn len(&self) -> f32 {
         self.lam_out - self.lam_in
     }
 
+    /// True for a zero-length chord.
     pub fn is_empty(&self) -> bool {
         self.lam_out <= self.lam_in
     }
