@@ -160,6 +160,7 @@ fn paper_typo_rate_is_biased() {
         .map(|l| good.z(l, exact(l)).abs())
         .fold(0.0, f64::max);
     let zmax_bad = (0..N).map(|l| bad.z(l, exact(l)).abs()).fold(0.0, f64::max);
+    eprintln!("max |z|: correct rate {zmax_good:.1}, typo rate {zmax_bad:.1}");
     assert!(zmax_good < 4.0, "correct rate: max |z| = {zmax_good}");
     assert!(
         zmax_bad > 10.0,
