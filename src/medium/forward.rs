@@ -1,0 +1,105 @@
+use super::{ChannelPick, HomogeneousMedium, Mixture};
+use crate::spectrum::Spectrum;
+use rand::Rng;
+
+/// One free flight of a forward (light) ray through a homogeneous medium segment, sampled with
+/// the spectral mixture (bin picked in proportion to the ray's flux, with a uniform floor).
+///
+/// Usage: [`ForwardFlight::sample`], then gather along `[0, self.end()]` using
+/// [`ForwardFlight::flux_at`] for the flux at each gather point, then [`ForwardFlight::finish`]
+/// to update the flux for what follows.
+///
+/// Why `flux_at` and not the flux at the segment start: the segment reaches distance `s` with
+/// probability `Tmix(s)`, so for bin `l` to see the uncollided flux `Phi_l e^{-st_l s}` on
+/// average the segment must carry `Phi_l e^{-st_l s} / Tmix(s)` at `s`. This is 1 x Phi in
+/// monochrome (or when all bins have the same sigma_t) but not in colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForwardFlight {
+    mix: Mixture,
+    /// Sampled collision distance (may exceed the segment).
+    t: f32,
+    seg_len: f32,
+}
+
+/// What happens to a forward ray at the end of a flight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FlightEnd {
+    /// Left the segment at `seg_len` with the flux updated by `e^{-st_l T} / Tmix(T)`.
+    Escaped,
+    /// Collided and scattered at `t` (flux updated by `ss_l e^{-st_l t} / pdf_mix(t)`, absorption
+    /// by weight, then survived Russian roulette): sample a new direction from the phase function.
+    Scattered { t: f32 },
+    /// Collided at `t` and was killed by Russian roulette.
+    Killed { t: f32 },
+}
+
+impl ForwardFlight {
+    /// Samples the collision distance for a ray carrying `flux` over a segment of length
+    /// `seg_len` (`+inf` allowed).
+    #[inline]
+    pub fn sample<R: Rng + ?Sized>(
+        medium: &HomogeneousMedium,
+        flux: &Spectrum,
+        floor: f32,
+        seg_len: f32,
+        rng: &mut R,
+    ) -> Self {
+        let mix = Mixture::new(ChannelPick::Throughput, flux, medium, floor);
+        let t = mix.sample_distance(rng.random(), rng.random());
+        Self { mix, t, seg_len }
+    }
+
+    /// True if the flight leaves the segment before colliding.
+    pub fn escapes(&self) -> bool {
+        self.t >= self.seg_len || self.t.is_nan()
+    }
+
+    /// Length of the forward segment actually travelled: the collision distance or the segment
+    /// length.
+    pub fn end(&self) -> f32 {
+        self.t.min(self.seg_len)
+    }
+
+    /// The flight's spectral mixture (for colour gather weights along the segment).
+    pub fn mixture(&self) -> &Mixture {
+        &self.mix
+    }
+
+    /// Flux per bin at distance `s` in `[0, end()]` along the flight, for gathering.
+    #[inline]
+    pub fn flux_at(&self, flux: &Spectrum, s: f32) -> Spectrum {
+        *flux * self.mix.survival_weight(s)
+    }
+
+    /// Applies the end-of-flight update to `flux`. `rr_threshold`: when the largest bin of the
+    /// collided flux falls below it, the ray survives with probability `max / rr_threshold` and is
+    /// reweighted (`0` disables roulette).
+    #[inline]
+    pub fn finish<R: Rng + ?Sized>(
+        &self,
+        medium: &HomogeneousMedium,
+        flux: &mut Spectrum,
+        rr_threshold: f32,
+        rng: &mut R,
+    ) -> FlightEnd {
+        if self.escapes() {
+            *flux *= self.mix.survival_weight(self.seg_len);
+            return FlightEnd::Escaped;
+        }
+        let e = self.mix.eval(self.t);
+        if e.pdf.is_nan() || e.pdf <= 0.0 {
+            return FlightEnd::Killed { t: self.t };
+        }
+        *flux *= medium.sigma_s * e.tr * (1.0 / e.pdf);
+        let m = flux.max_value();
+        if m < rr_threshold {
+            let p = m / rr_threshold;
+            if rng.random::<f32>() >= p {
+                *flux = Spectrum::ZERO;
+                return FlightEnd::Killed { t: self.t };
+            }
+            *flux *= 1.0 / p;
+        }
+        FlightEnd::Scattered { t: self.t }
+    }
+}

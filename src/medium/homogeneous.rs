@@ -1,0 +1,65 @@
+use super::{HenyeyGreenstein, MediumError};
+use crate::spectrum::{MAX_BINS, Spectrum};
+
+/// A homogeneous medium: per-bin scattering and absorption coefficients in 1/m and a
+/// Henyey–Greenstein phase function. `sigma_t = sigma_s + sigma_a`; lanes past `n` are zero.
+///
+/// Fields are public for reading in hot loops; build it with [`HomogeneousMedium::new`], which
+/// validates, so that the invariants hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomogeneousMedium {
+    /// Scattering coefficient per bin (1/m).
+    pub sigma_s: Spectrum,
+    /// Absorption coefficient per bin (1/m).
+    pub sigma_a: Spectrum,
+    /// Extinction `sigma_s + sigma_a` per bin (1/m).
+    pub sigma_t: Spectrum,
+    /// Phase function.
+    pub phase: HenyeyGreenstein,
+    /// Number of active spectral bins.
+    pub n: usize,
+}
+
+impl HomogeneousMedium {
+    /// Validates (`n` in 1..=MAX_BINS, coefficients finite and >= 0 in the first `n` bins,
+    /// |g| < 1) and zeroes the lanes past `n`.
+    pub fn new(
+        sigma_s: &Spectrum,
+        sigma_a: &Spectrum,
+        g: f32,
+        n: usize,
+    ) -> Result<Self, MediumError> {
+        if n == 0 || n > MAX_BINS {
+            return Err(MediumError::BinCount { n, max: MAX_BINS });
+        }
+        for (what, s) in [("sigma_s", sigma_s), ("sigma_a", sigma_a)] {
+            for (bin, &value) in s.0[..n].iter().enumerate() {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(MediumError::Coefficient { what, bin, value });
+                }
+            }
+        }
+        let phase = HenyeyGreenstein::new(g)?;
+        let mut ss = Spectrum::ZERO;
+        let mut sa = Spectrum::ZERO;
+        ss.0[..n].copy_from_slice(&sigma_s.0[..n]);
+        sa.0[..n].copy_from_slice(&sigma_a.0[..n]);
+        Ok(Self {
+            sigma_s: ss,
+            sigma_a: sa,
+            sigma_t: ss + sa,
+            phase,
+            n,
+        })
+    }
+
+    /// Henyey–Greenstein asymmetry.
+    pub fn g(&self) -> f32 {
+        self.phase.g()
+    }
+
+    /// Per-bin single-scattering albedo (0 where sigma_t is 0).
+    pub fn albedo(&self) -> Spectrum {
+        self.sigma_s.safe_div(&self.sigma_t)
+    }
+}
