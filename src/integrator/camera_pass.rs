@@ -9,7 +9,7 @@ use super::record::{CLASS_ALL, CLASS_C, SurfaceRecord, VolumeRecord, VolumeShape
 use super::rng::{self, Domain, Rng};
 use crate::film::{Layer, PassBuffer};
 use crate::geometry::{Hit, Ray, spawn};
-use crate::medium::{ChannelPick, Mixture, WalkEnd};
+use crate::medium::{ChannelPick, Mixture, WalkEnd, sample_extinction};
 use crate::scene::Scene;
 use crate::scene::desc::{ChannelPickDesc, GatherMode, VolumeKind};
 use crate::spectrum::Spectrum;
@@ -137,8 +137,7 @@ impl<'a> CameraPath<'a> {
                         // that the volumes already gathered (method note 6).
                         self.sees_emitters = false;
                         let p = ray.o + ray.d * s;
-                        let u = Vec3::new(rng.random(), rng.random(), 0.0);
-                        let d = scene.media[m as usize].phase().sample(ray.d, u.truncate());
+                        let d = scene.media[m as usize].phase.sample_dir(ray.d, rng.random(), rng.random());
                         ray = Ray { o: p, d };
                         if !self.roulette(depth, rng) {
                             return;
@@ -235,8 +234,7 @@ impl<'a> CameraPath<'a> {
             ChannelPickDesc::Throughput => ChannelPick::Throughput,
             ChannelPickDesc::Uniform => ChannelPick::Uniform,
         };
-        let med = &self.scene.media[m as usize];
-        Mixture::new(&self.w, &med.sigma_t, self.n, pick, s.channel_floor)
+        Mixture::new(pick, &self.w, &self.scene.media[m as usize], s.channel_floor)
     }
 
     fn volume(&self, out: &mut CameraOutput, start: Vec3, dir: Vec3, len: f32, m: u32, shape: VolumeShape, w: &Spectrum, extra: Option<&Spectrum>) {
@@ -277,7 +275,7 @@ impl<'a> CameraPath<'a> {
         match settings.volume {
             VolumeKind::Spheres => {
                 let this = &*self;
-                let end = med.walk(&mix, settings.q, seg_len, rng, |s, w| {
+                let end = scene.walk.walk(med, &mix, seg_len, rng, |s, w| {
                     let w = this.w * *w;
                     this.volume(out, ray.o + ray.d * s, ray.d, 0.0, m, VolumeShape::Sphere, &w, None);
                 });
@@ -295,18 +293,14 @@ impl<'a> CameraPath<'a> {
                 }
             }
             VolumeKind::CylinderTruncated => {
-                let s_e = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
-                let len = s_e.min(seg_len);
+                let end = sample_extinction(med, &mix, seg_len, rng);
+                let len = match end {
+                    WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => s,
+                    WalkEnd::Transmitted { .. } => seg_len,
+                };
                 let w = self.w;
-                self.volume(out, ray.o, ray.d, len, m, VolumeShape::Truncated, &w, Some(&mix.p));
-                if s_e >= seg_len {
-                    self.w *= med.sigma_t.transmittance(seg_len, self.n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
-                    Segment::Reached
-                } else if first_extinction {
-                    Segment::Ended
-                } else {
-                    self.scatter_roulette(&mix, m, s_e, rng)
-                }
+                self.volume(out, ray.o, ray.d, len, m, VolumeShape::Truncated, &w, Some(mix.probabilities()));
+                self.after_walk(end, first_extinction)
             }
         }
     }
@@ -332,22 +326,7 @@ impl<'a> CameraPath<'a> {
     /// Free flight without gathering: the continuation of a see-through path (note 4).
     fn free_flight(&mut self, mix: &Mixture, m: u32, seg_len: f32, rng: &mut Rng) -> Segment {
         let med = &self.scene.media[m as usize];
-        let s = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
-        if s >= seg_len {
-            self.w *= med.sigma_t.transmittance(seg_len, self.n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
-            return Segment::Reached;
-        }
-        self.scatter_roulette(mix, m, s, rng)
-    }
-
-    fn scatter_roulette(&mut self, mix: &Mixture, m: u32, s: f32, rng: &mut Rng) -> Segment {
-        let med = &self.scene.media[m as usize];
-        match med.scatter_or_absorb(mix, s, rng.random()) {
-            Some(update) => {
-                self.w *= update;
-                Segment::Scattered(s)
-            }
-            None => Segment::Ended,
-        }
+        let end = sample_extinction(med, mix, seg_len, rng);
+        self.after_walk(end, false)
     }
 }

@@ -15,7 +15,7 @@ use super::volume;
 use crate::film::{Layer, PassBuffer};
 use crate::geometry::{Hit, Ray, spawn};
 use crate::material::LobeKind;
-use crate::medium::{ChannelPick, Mixture};
+use crate::medium::{FlightEnd, ForwardFlight, Mixture};
 use crate::scene::Scene;
 use crate::spectrum::Spectrum;
 
@@ -40,7 +40,8 @@ pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, norm: f3
                 let mut part = PassBuffer::new(buf.pixels, buf.n);
                 let mut rng = rng::stream(seed, pass, Domain::Light, c);
                 let rays = chunk.min(total - c * chunk);
-                let mut tracer = ForwardTracer { scene, gather, norm, buf: &mut part };
+                let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
+                let mut tracer = ForwardTracer { scene, long, gather, norm, buf: &mut part };
                 for _ in 0..rays {
                     tracer.trace(&mut rng);
                 }
@@ -56,6 +57,8 @@ pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, norm: f3
 
 struct ForwardTracer<'a> {
     scene: &'a Scene,
+    /// Volumes are paper eq. 3 "long" cylinders: gather over whole forward segments.
+    long: bool,
     gather: &'a Gather,
     norm: f32,
     buf: &'a mut PassBuffer,
@@ -83,22 +86,24 @@ impl ForwardTracer<'_> {
                     None => scene.world_exit(&ray),
                 };
                 let med = &scene.media[m as usize];
-                let mix = Mixture::new(&flux, &med.sigma_t, n, ChannelPick::Throughput, scene.settings.channel_floor);
-                let s = mix.sample_distance(&med.sigma_t, rng.random(), rng.random());
-                let len = s.min(seg_len);
-                self.gather_volumes(m, class, &ray, len, &flux);
-                if s < seg_len {
-                    // Collision: scattering with absorption by weight (mixture-weighted, note 4).
-                    flux *= med.collision_weight(&mix, s);
-                    if !self.roulette(&mut flux, flux0, depth, rng) {
-                        return;
+                let flight = ForwardFlight::sample(med, &flux, scene.settings.channel_floor, seg_len, rng);
+                // Paper eq. 3 integrates the forward attenuation deterministically: it needs the
+                // whole segment, not the sampled flight.
+                let reach = if self.long { seg_len } else { flight.end() };
+                self.gather_volumes(m, class, &ray, reach, &flux, &flight);
+                match flight.finish(med, &mut flux, 0.0, rng) {
+                    FlightEnd::Escaped => {}
+                    FlightEnd::Killed { .. } => return,
+                    FlightEnd::Scattered { t } => {
+                        if !self.roulette(&mut flux, flux0, depth, rng) {
+                            return;
+                        }
+                        let p = ray.o + ray.d * t;
+                        let d = med.phase.sample_dir(ray.d, rng.random(), rng.random());
+                        ray = Ray { o: p, d };
+                        continue;
                     }
-                    let p = ray.o + ray.d * s;
-                    let d = med.phase().sample(ray.d, glam::Vec2::new(rng.random(), rng.random()));
-                    ray = Ray { o: p, d };
-                    continue;
                 }
-                flux *= med.sigma_t.transmittance(seg_len, n) * (1.0 / mix.tmix(&med.sigma_t, seg_len));
             }
             let Some(hit) = hit else { return };
             let shape = scene.geometry.shape(hit.shape);
@@ -164,42 +169,41 @@ impl ForwardTracer<'_> {
         });
     }
 
-    fn gather_volumes(&mut self, m: u32, class: u8, ray: &Ray, len: f32, flux: &Spectrum) {
+    fn gather_volumes(&mut self, m: u32, class: u8, ray: &Ray, len: f32, flux: &Spectrum, flight: &ForwardFlight) {
         let scene = self.scene;
         let n = scene.grid.n;
         let gather = self.gather;
         let radius = gather.radius;
+        let med = &scene.media[m as usize];
+        let norm = self.norm;
+        let buf = &mut *self.buf;
         gather.volumes_along(ray.o, ray.d, len, |rec: &VolumeRecord| {
             if rec.medium as u32 != m || rec.classes & class == 0 {
                 return;
             }
-            let med = &scene.media[m as usize];
-            let f = med.phase().eval(ray.d.dot(-rec.dir));
-            let w = gather.weight(rec.weight, n);
+            let f = med.phase.eval(-ray.d.dot(rec.dir));
             let factor: Spectrum = match rec.shape {
                 VolumeShape::Sphere => {
-                    let g = volume::sphere_factor(rec.start, radius, ray.o, ray.d, len);
-                    if g <= 0.0 {
-                        return;
-                    }
-                    *flux * (f * g)
+                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, rec.start, radius) else { return };
+                    flight.flux_at(flux, chord.mid()) * (f * volume::track_length_density(&chord, radius))
                 }
-                VolumeShape::Cylinder => {
-                    let Some(k) = volume::cylinder_eq2(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, n) else { return };
-                    *flux * k * f
-                }
-                VolumeShape::Long => {
-                    let Some(k) = volume::cylinder_eq3(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, n) else { return };
-                    *flux * k * f
-                }
-                VolumeShape::Truncated => {
-                    let p = gather.weight(rec.weight + n as u32, n);
-                    let Some(k) = volume::cylinder_truncated(rec.start, rec.dir, rec.len, radius, ray.o, ray.d, len, &med.sigma_s, &med.sigma_t, &Spectrum::from_slice(p), n) else { return };
+                _ => {
+                    let axis = volume::CameraAxis { origin: rec.start, dir: rec.dir, len: rec.len };
+                    let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len) else { return };
+                    let k = match rec.shape {
+                        VolumeShape::Cylinder => volume::cylinder_eq2_fwd(med, flight.mixture(), &chord, radius),
+                        VolumeShape::Long => volume::long_eq3_exact(med, &chord, radius),
+                        _ => {
+                            let p = Spectrum::from_slice(gather.weight(rec.weight + n as u32, n));
+                            let cam = Mixture::from_probabilities(&p, med);
+                            volume::cylinder_truncated(med, &cam, Some(flight.mixture()), &chord, radius)
+                        }
+                    };
                     *flux * k * f
                 }
             };
-            let norm = self.norm;
-            let slot = self.buf.slot(Layer::Medium, rec.pixel as usize);
+            let w = gather.weight(rec.weight, n);
+            let slot = buf.slot(Layer::Medium, rec.pixel as usize);
             for ((s, w), f) in slot.iter_mut().zip(w).zip(factor.0.iter()) {
                 *s += w * f * norm;
             }

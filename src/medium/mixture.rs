@@ -87,6 +87,15 @@ impl Mixture {
         Self { p, st, st_min, n }
     }
 
+    /// A mixture with given probabilities (e.g. stored with a gather record), which must
+    /// satisfy the invariant: positive on the active bins, summing to 1.
+    pub fn from_probabilities(p: &Spectrum, medium: &HomogeneousMedium) -> Self {
+        let n = medium.n;
+        let st = medium.sigma_t;
+        let st_min = st.0[..n].iter().copied().fold(f32::INFINITY, f32::min);
+        Self { p: *p, st, st_min, n }
+    }
+
     /// The pick probabilities `P_l` (zero past the active bins).
     pub fn probabilities(&self) -> &Spectrum {
         &self.p

@@ -15,7 +15,7 @@ use crate::camera::Camera;
 use crate::geometry::{self, Geometry, Ray, ShapeKind, Transform};
 use crate::light::{Light, LightSet};
 use crate::material::{Material, Texture};
-use crate::medium::HomogeneousMedium;
+use crate::medium::{HomogeneousMedium, MultiSphereWalk};
 use crate::scene::desc::{IntegratorDesc, Projection, SceneDesc};
 use crate::spectrum::{SpectralGrid, Spectrum};
 
@@ -35,6 +35,8 @@ pub struct Scene {
     pub world_min: Vec3,
     pub world_max: Vec3,
     pub settings: IntegratorDesc,
+    /// The camera-side multi-sphere walk with the scene's q.
+    pub walk: MultiSphereWalk,
     pub desc: SceneDesc,
 }
 
@@ -68,7 +70,7 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             let key = format!("media.{name}");
             let ss = spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
             let sa = spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
-            Ok(HomogeneousMedium::new(ss, sa, m.g, n))
+            HomogeneousMedium::new(&ss, &sa, m.g, n).map_err(|e| err(scene, key.clone(), e.to_string()))
         })
         .collect::<Result<Vec<_>, SceneError>>()?;
 
@@ -216,6 +218,7 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         world_min,
         world_max,
         settings: d.integrator.clone(),
+        walk: MultiSphereWalk::new(d.integrator.q).map_err(|e| err(scene, "integrator.q".into(), e.to_string()))?,
         desc: d.clone(),
     };
     scene_out.camera_medium = scene_out.medium_at(v3(c.position));
