@@ -149,12 +149,14 @@ impl Geometry {
             .map(|t| {
                 let lo = t.v[0].min(t.v[1]).min(t.v[2]);
                 let hi = t.v[0].max(t.v[1]).max(t.v[2]);
-                BvhAabb::new(lo.into(), hi.into())
+                let pad = bvh_pad(lo, hi);
+                BvhAabb::new((lo - pad).into(), (hi + pad).into())
             })
             .collect();
         boxes.extend(analytic.iter().map(|a| {
             let (lo, hi) = a.bounds();
-            BvhAabb::new(lo.into(), hi.into())
+            let pad = bvh_pad(lo, hi);
+            BvhAabb::new((lo - pad).into(), (hi + pad).into())
         }));
         let mut bounds = Aabb::EMPTY;
         for b in &boxes {
@@ -218,9 +220,11 @@ impl Geometry {
         let bvh = self.bvh.as_ref()?;
         let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
         let mut hit = RayHit::none();
-        let found = bvh.ray_traverse(BvhRay::new(o, d, 0.0, t_max), &mut hit, |r, id| {
-            self.prim_t(bvh.primitive_indices[id] as usize, o, d, r.tmax)
-        });
+        let found = bvh.ray_traverse(
+            BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
+            &mut hit,
+            |r, id| self.prim_t(bvh.primitive_indices[id] as usize, o, d, r.tmax),
+        );
         if !found {
             return None;
         }
@@ -233,7 +237,7 @@ impl Geometry {
             return false;
         };
         let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
-        !bvh.ray_traverse_miss(BvhRay::new(o, d, 0.0, t_max), |r, id| {
+        !bvh.ray_traverse_miss(BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max), |r, id| {
             self.prim_t(bvh.primitive_indices[id] as usize, o, d, r.tmax)
         })
     }
@@ -332,6 +336,21 @@ impl Geometry {
             AreaSampler::Empty => (Vec3::ZERO, Vec3::Z),
         }
     }
+}
+
+/// obvhs node tests ignore everything closer than its traversal epsilon (1e-4) to the ray origin,
+/// and lose flat boxes to rounding. Padding each primitive box by more than that epsilon keeps
+/// hits just in front of a spawned origin (corners, edges) findable: a ray starting in a padded
+/// box cannot leave it before t = 1e-4.
+fn bvh_pad(lo: Vec3, hi: Vec3) -> f32 {
+    2e-4 + 1e-6 * lo.abs().max(hi.abs()).max_element()
+}
+
+/// obvhs picks a child's near plane from the direction's sign bit but inverts -0.0 to a negative
+/// value: turning -0.0 into +0.0 keeps axis-parallel rays consistent.
+#[inline(always)]
+fn bvh_dir(d: Vec3) -> Vec3A {
+    Vec3A::from(d) + Vec3A::ZERO
 }
 
 fn analytic_area(a: &Analytic) -> f32 {
