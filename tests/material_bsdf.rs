@@ -190,7 +190,8 @@ fn glossy_furnace_never_exceeds_one() {
                 "roughness {rough}, theta {theta}: R = {r} +- {se}"
             );
             // Nor absorbing much: single-scattering GGX loses some energy at grazing angles.
-            assert!(theta > 80.0 || r > 0.55, "roughness {rough}, theta {theta}: R = {r}");
+            eprintln!("glossy furnace: roughness {rough} theta {theta}: R = {r:.3} +- {se:.3}");
+            assert!(theta > 60.0 || r > 0.7, "roughness {rough}, theta {theta}: R = {r}");
         }
     }
 }
