@@ -191,7 +191,10 @@ fn glossy_furnace_never_exceeds_one() {
             );
             // Nor absorbing much: single-scattering GGX loses some energy at grazing angles.
             eprintln!("glossy furnace: roughness {rough} theta {theta}: R = {r:.3} +- {se:.3}");
-            assert!(theta > 60.0 || r > 0.7, "roughness {rough}, theta {theta}: R = {r}");
+            assert!(
+                theta > 60.0 || r > 0.7,
+                "roughness {rough}, theta {theta}: R = {r}"
+            );
         }
     }
 }
