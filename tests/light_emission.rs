@@ -1,5 +1,6 @@
 //! Lights: forward rays carry the declared power, distributed as declared. Monte-Carlo checks use
 //! fixed seeds and |z| < 4.
+#![allow(clippy::needless_range_loop)] // per-bin loops index several spectra at once
 
 use std::f32::consts::PI;
 

@@ -143,7 +143,6 @@ fn dispersion_is_unbiased_per_bin() {
                 assert_eq!(bins.len(), 1, "dispersive transmission carries one bin");
                 let k = bins[0];
                 let (n1, n2) = if inside { (ior[k], 1.0) } else { (1.0, ior[k]) };
-                let (co, ci) = (wo.dot(h.ng), s.wi.dot(h.ng));
                 let (si, st) = (wo.cross(h.ng).length(), s.wi.cross(h.ng).length());
                 assert!((n1 * si - n2 * st).abs() < 1e-4, "Snell for bin {k}");
                 t_per_bin[k] += s.weight[k] as f64;
