@@ -60,6 +60,9 @@ pub struct Geometry {
     tri_shading: Vec<TriShading>,
     analytic: Vec<Analytic>,
     bvh: Option<CwBvh>,
+    /// Triangles in BVH leaf order (so a leaf's primitives are adjacent in memory); analytic
+    /// primitives' slots hold a NaN triangle, which never hits.
+    slot_tris: Vec<TriGeom>,
     bounds: Aabb,
     areas: Vec<f32>,
     samplers: Vec<AreaSampler>,
@@ -171,6 +174,20 @@ impl Geometry {
             )
         });
 
+        let nan = Vec3A::splat(f32::NAN);
+        let slot_tris = bvh.as_ref().map_or(Vec::new(), |b| {
+            b.primitive_indices
+                .iter()
+                .map(|&p| {
+                    tris.get(p as usize).copied().unwrap_or(TriGeom {
+                        v0: nan,
+                        e1: nan,
+                        e2: nan,
+                    })
+                })
+                .collect()
+        });
+
         Ok(Geometry {
             shapes,
             tris,
@@ -178,6 +195,7 @@ impl Geometry {
             tri_shading,
             analytic,
             bvh,
+            slot_tris,
             bounds,
             areas,
             samplers,
@@ -205,6 +223,19 @@ impl Geometry {
         self.tris.len() + self.analytic.len()
     }
 
+    /// Distance to the primitive in BVH slot `slot`: triangles straight from leaf-ordered
+    /// storage, analytic shapes through the slot's primitive id.
+    #[inline(always)]
+    fn slot_t(&self, bvh: &CwBvh, slot: usize, o: Vec3A, d: Vec3A, t_max: f32) -> f32 {
+        let tri = &self.slot_tris[slot];
+        if !tri.v0.x.is_nan() {
+            tri_hit(tri, o, d, t_max).0
+        } else {
+            let prim = bvh.primitive_indices[slot] as usize;
+            self.analytic[prim - self.tris.len()].intersect(o.into(), d.into(), t_max)
+        }
+    }
+
     /// Distance to primitive `prim` along the ray if in `(0, t_max)`, else infinity.
     #[inline(always)]
     fn prim_t(&self, prim: usize, o: Vec3A, d: Vec3A, t_max: f32) -> f32 {
@@ -223,7 +254,7 @@ impl Geometry {
         let found = bvh.ray_traverse(
             BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
             &mut hit,
-            |r, id| self.prim_t(bvh.primitive_indices[id] as usize, o, d, r.tmax),
+            |r, id| self.slot_t(bvh, id, o, d, r.tmax),
         );
         if !found {
             return None;
@@ -238,7 +269,7 @@ impl Geometry {
         };
         let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
         !bvh.ray_traverse_miss(BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max), |r, id| {
-            self.prim_t(bvh.primitive_indices[id] as usize, o, d, r.tmax)
+            self.slot_t(bvh, id, o, d, r.tmax)
         })
     }
 
