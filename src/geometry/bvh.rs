@@ -13,6 +13,7 @@ use obvhs::{
 use super::analytic::{Analytic, AnalyticKind};
 use super::sampling::{concentric_disc, uniform_sphere, uniform_triangle};
 use super::tessellate::{WorldTri, tessellate};
+use super::triangle::{ShearedRay, TriGeom};
 use super::{Aabb, GeometryError, Ray, ShapeDesc, ShapeKind};
 
 /// A surface hit. `ng` is the geometric normal pointing out of the shape (the exterior side),
@@ -25,14 +26,6 @@ pub struct Hit {
     pub ns: Vec3,
     pub uv: Vec2,
     pub shape: u32,
-}
-
-/// Triangle in the layout the intersection test wants.
-#[derive(Clone, Copy, Debug)]
-struct TriGeom {
-    v0: Vec3A,
-    e1: Vec3A,
-    e2: Vec3A,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -137,9 +130,7 @@ impl Geometry {
         let tris: Vec<TriGeom> = world
             .iter()
             .map(|t| TriGeom {
-                v0: t.v[0].into(),
-                e1: (t.v[1] - t.v[0]).into(),
-                e2: (t.v[2] - t.v[0]).into(),
+                v: t.v.map(Vec3A::from),
             })
             .collect();
         let tri_shading = world
@@ -174,17 +165,10 @@ impl Geometry {
             )
         });
 
-        let nan = Vec3A::splat(f32::NAN);
         let slot_tris = bvh.as_ref().map_or(Vec::new(), |b| {
             b.primitive_indices
                 .iter()
-                .map(|&p| {
-                    tris.get(p as usize).copied().unwrap_or(TriGeom {
-                        v0: nan,
-                        e1: nan,
-                        e2: nan,
-                    })
-                })
+                .map(|&p| tris.get(p as usize).copied().unwrap_or(TriGeom::INVALID))
                 .collect()
         });
 
@@ -226,35 +210,36 @@ impl Geometry {
     /// Distance to the primitive in BVH slot `slot`: triangles straight from leaf-ordered
     /// storage, analytic shapes through the slot's primitive id.
     #[inline(always)]
-    fn slot_t(&self, bvh: &CwBvh, slot: usize, o: Vec3A, d: Vec3A, t_max: f32) -> f32 {
+    fn slot_t(&self, bvh: &CwBvh, slot: usize, ray: &Ray, sr: &ShearedRay, t_max: f32) -> f32 {
         let tri = &self.slot_tris[slot];
-        if !tri.v0.x.is_nan() {
-            tri_hit(tri, o, d, t_max).0
+        if tri.is_valid() {
+            sr.hit(tri, t_max).0
         } else {
             let prim = bvh.primitive_indices[slot] as usize;
-            self.analytic[prim - self.tris.len()].intersect(o.into(), d.into(), t_max)
+            self.analytic[prim - self.tris.len()].intersect(ray.o, ray.d, t_max)
         }
     }
 
     /// Distance to primitive `prim` along the ray if in `(0, t_max)`, else infinity.
     #[inline(always)]
-    fn prim_t(&self, prim: usize, o: Vec3A, d: Vec3A, t_max: f32) -> f32 {
+    fn prim_t(&self, prim: usize, ray: &Ray, sr: &ShearedRay, t_max: f32) -> f32 {
         if let Some(tri) = self.tris.get(prim) {
-            tri_hit(tri, o, d, t_max).0
+            sr.hit(tri, t_max).0
         } else {
-            self.analytic[prim - self.tris.len()].intersect(o.into(), d.into(), t_max)
+            self.analytic[prim - self.tris.len()].intersect(ray.o, ray.d, t_max)
         }
     }
 
     /// Closest hit in `(0, t_max)`, traversing the CWBVH.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
-        let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
+        let o = Vec3A::from(ray.o);
+        let sr = ShearedRay::new(o, ray.d.into());
         let mut hit = RayHit::none();
         let found = bvh.ray_traverse(
             BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
             &mut hit,
-            |r, id| self.slot_t(bvh, id, o, d, r.tmax),
+            |r, id| self.slot_t(bvh, id, ray, &sr, r.tmax),
         );
         if !found {
             return None;
@@ -267,18 +252,19 @@ impl Geometry {
         let Some(bvh) = self.bvh.as_ref() else {
             return false;
         };
-        let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
+        let o = Vec3A::from(ray.o);
+        let sr = ShearedRay::new(o, ray.d.into());
         !bvh.ray_traverse_miss(BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max), |r, id| {
-            self.slot_t(bvh, id, o, d, r.tmax)
+            self.slot_t(bvh, id, ray, &sr, r.tmax)
         })
     }
 
     /// Closest hit by testing every primitive: the reference the BVH is checked against.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let (o, d) = (Vec3A::from(ray.o), Vec3A::from(ray.d));
+        let sr = ShearedRay::new(ray.o.into(), ray.d.into());
         let mut best = (t_max, u32::MAX);
         for prim in 0..self.num_primitives() {
-            let t = self.prim_t(prim, o, d, best.0);
+            let t = self.prim_t(prim, ray, &sr, best.0);
             if t < best.0 {
                 best = (t, prim as u32);
             }
@@ -289,10 +275,10 @@ impl Geometry {
     fn hit_details(&self, ray: &Ray, prim: u32, t: f32) -> Hit {
         let prim = prim as usize;
         if let Some(tri) = self.tris.get(prim) {
-            let (_, b1, b2) = tri_hit(tri, ray.o.into(), ray.d.into(), f32::INFINITY);
-            let b0 = 1.0 - b1 - b2;
-            let p = Vec3::from(tri.v0 + tri.e1 * b1 + tri.e2 * b2);
-            let ng = Vec3::from(tri.e1.cross(tri.e2)).normalize();
+            let sr = ShearedRay::new(ray.o.into(), ray.d.into());
+            let (_, b0, b1, b2) = sr.hit(tri, f32::INFINITY);
+            let p = Vec3::from(tri.v[0] * b0 + tri.v[1] * b1 + tri.v[2] * b2);
+            let ng = Vec3::from(tri.normal()).normalize();
             let sh = &self.tri_shading[prim];
             let ns = match sh.n {
                 Some(n) => {
@@ -345,8 +331,8 @@ impl Geometry {
                 };
                 let tri = &self.tris[*first as usize + k];
                 let b = uniform_triangle(Vec2::new(ux, u.y));
-                let p = tri.v0 + tri.e1 * b.x + tri.e2 * b.y;
-                (p.into(), Vec3::from(tri.e1.cross(tri.e2)).normalize())
+                let p = tri.v[0] + (tri.v[1] - tri.v[0]) * b.x + (tri.v[2] - tri.v[0]) * b.y;
+                (p.into(), Vec3::from(tri.normal()).normalize())
             }
             AreaSampler::Analytic(i) => {
                 let a = &self.analytic[*i as usize];
@@ -396,33 +382,5 @@ fn analytic_area(a: &Analytic) -> f32 {
             let area_scale = t.vector(Vec3::X).cross(t.vector(Vec3::Y)).length();
             std::f32::consts::PI * radius * radius * area_scale
         }
-    }
-}
-
-/// Moeller-Trumbore: (t, b1, b2) with t infinite on a miss or outside `(0, t_max)`.
-#[inline(always)]
-fn tri_hit(tri: &TriGeom, o: Vec3A, d: Vec3A, t_max: f32) -> (f32, f32, f32) {
-    const MISS: (f32, f32, f32) = (f32::INFINITY, 0.0, 0.0);
-    let p = d.cross(tri.e2);
-    let det = tri.e1.dot(p);
-    if det == 0.0 {
-        return MISS;
-    }
-    let inv = 1.0 / det;
-    let s = o - tri.v0;
-    let b1 = s.dot(p) * inv;
-    if !(0.0..=1.0).contains(&b1) {
-        return MISS;
-    }
-    let q = s.cross(tri.e1);
-    let b2 = d.dot(q) * inv;
-    if b2 < 0.0 || b1 + b2 > 1.0 {
-        return MISS;
-    }
-    let t = tri.e2.dot(q) * inv;
-    if t > 0.0 && t < t_max {
-        (t, b1, b2)
-    } else {
-        MISS
     }
 }

@@ -10,6 +10,7 @@ pub mod sampling;
 mod shape;
 mod tessellate;
 mod transform;
+mod triangle;
 
 pub use bvh::{Geometry, Hit};
 pub use error::GeometryError;
