@@ -24,16 +24,15 @@ impl TriGeom {
     }
 }
 
-/// Per-ray constants of the watertight test: the ray is sheared so that it runs along +z.
+/// Per-ray constants of the watertight test: the shear that maps the ray onto +z, as three rows
+/// (dot products instead of per-triangle dynamic axis indexing; every vertex is still mapped by
+/// the same deterministic arithmetic, which is all watertightness needs).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ShearedRay {
     o: Vec3A,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    rx: Vec3A,
+    ry: Vec3A,
+    rz: Vec3A,
 }
 
 impl ShearedRay {
@@ -53,14 +52,12 @@ impl ShearedRay {
             std::mem::swap(&mut kx, &mut ky); // keep the winding
         }
         let sz = 1.0 / d[kz];
+        let unit = |k: usize| Vec3A::AXES[k];
         ShearedRay {
             o,
-            kx,
-            ky,
-            kz,
-            sx: d[kx] * sz,
-            sy: d[ky] * sz,
-            sz,
+            rx: unit(kx) - unit(kz) * (d[kx] * sz),
+            ry: unit(ky) - unit(kz) * (d[ky] * sz),
+            rz: unit(kz) * sz,
         }
     }
 
@@ -68,13 +65,12 @@ impl ShearedRay {
     #[inline(always)]
     pub fn hit(&self, tri: &TriGeom, t_max: f32) -> (f32, f32, f32, f32) {
         const MISS: (f32, f32, f32, f32) = (f32::INFINITY, 0.0, 0.0, 0.0);
-        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
         let a = tri.v[0] - self.o;
         let b = tri.v[1] - self.o;
         let c = tri.v[2] - self.o;
-        let (ax, ay) = (a[kx] - self.sx * a[kz], a[ky] - self.sy * a[kz]);
-        let (bx, by) = (b[kx] - self.sx * b[kz], b[ky] - self.sy * b[kz]);
-        let (cx, cy) = (c[kx] - self.sx * c[kz], c[ky] - self.sy * c[kz]);
+        let (ax, ay) = (a.dot(self.rx), a.dot(self.ry));
+        let (bx, by) = (b.dot(self.rx), b.dot(self.ry));
+        let (cx, cy) = (c.dot(self.rx), c.dot(self.ry));
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
@@ -94,7 +90,7 @@ impl ShearedRay {
         if det == 0.0 || det.is_nan() {
             return MISS;
         }
-        let t_scaled = u * (self.sz * a[kz]) + v * (self.sz * b[kz]) + w * (self.sz * c[kz]);
+        let t_scaled = u * a.dot(self.rz) + v * b.dot(self.rz) + w * c.dot(self.rz);
         let inv = 1.0 / det;
         let t = t_scaled * inv;
         if t > 0.0 && t < t_max {
