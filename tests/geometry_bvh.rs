@@ -223,3 +223,32 @@ fn invalid_shapes_are_errors() {
             .is_none()
     );
 }
+
+#[test]
+fn runtime_types_are_shareable_across_threads_and_area_sampling_flags() {
+    fn shareable<T: Send + Sync>() {}
+    shareable::<Geometry>();
+    shareable::<brume::material::Material>();
+    shareable::<brume::light::Light>();
+    shareable::<brume::light::LightSet>();
+    shareable::<brume::camera::Camera>();
+    let geo = Geometry::new(vec![
+        ShapeDesc::new(
+            ShapeKind::Sphere { radius: 1.0 },
+            Transform::new(Vec3::ZERO, Vec3::new(10.0, 0.0, 0.0), Vec3::splat(2.0)),
+        ),
+        ShapeDesc::new(
+            ShapeKind::Sphere { radius: 1.0 },
+            Transform::new(Vec3::ZERO, Vec3::ZERO, Vec3::new(1.0, 2.0, 1.0)),
+        ),
+        ShapeDesc::new(
+            ShapeKind::Disc { radius: 1.0 },
+            Transform::new(Vec3::ZERO, Vec3::ZERO, Vec3::new(1.0, 2.0, 1.0)),
+        ),
+    ])
+    .unwrap();
+    assert!(geo.area_sampling_exact(0));
+    assert!(!geo.area_sampling_exact(1));
+    assert!(geo.area_sampling_exact(2));
+    assert!((geo.area(2) - 2.0 * std::f32::consts::PI).abs() < 1e-4);
+}

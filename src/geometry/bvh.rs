@@ -314,6 +314,25 @@ impl Geometry {
         self.areas[shape as usize]
     }
 
+    /// Is [`Self::sample_point`] exactly uniform and [`Self::area`] exact for this shape? False
+    /// only for spheres under non-uniform scaling (ellipsoids), which area lights must not use.
+    pub fn area_sampling_exact(&self, shape: u32) -> bool {
+        match &self.samplers[shape as usize] {
+            AreaSampler::Analytic(i) => {
+                let a = &self.analytic[*i as usize];
+                match a.kind {
+                    AnalyticKind::Sphere { .. } => {
+                        let m = a.transform.matrix();
+                        let l = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
+                        (l[0] - l[1]).abs() <= 1e-5 * l[0] && (l[0] - l[2]).abs() <= 1e-5 * l[0]
+                    }
+                    AnalyticKind::Disc { .. } => true,
+                }
+            }
+            _ => true,
+        }
+    }
+
     /// A point uniformly distributed over the shape's area (spheres: exact under uniform
     /// scaling) and the outward geometric normal there.
     pub fn sample_point(&self, shape: u32, u: Vec2) -> (Vec3, Vec3) {
