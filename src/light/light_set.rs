@@ -1,0 +1,69 @@
+use super::{EmissionSample, Light};
+use crate::geometry::Geometry;
+
+/// All lights, picked for forward rays in proportion to their total power (summed over bins).
+#[derive(Clone, Debug)]
+pub struct LightSet {
+    lights: Vec<Light>,
+    /// Cumulative pick probabilities.
+    cdf: Vec<f32>,
+    probs: Vec<f32>,
+}
+
+impl LightSet {
+    pub fn new(lights: Vec<Light>, geometry: &Geometry) -> LightSet {
+        let weights: Vec<f64> = lights
+            .iter()
+            .map(|l| {
+                let p = l.power(geometry).sum() as f64;
+                if p.is_finite() && p > 0.0 { p } else { 0.0 }
+            })
+            .collect();
+        let total: f64 = weights.iter().sum();
+        let probs: Vec<f32> = weights
+            .iter()
+            .map(|w| if total > 0.0 { (w / total) as f32 } else { 0.0 })
+            .collect();
+        let mut acc = 0.0f64;
+        let cdf = weights
+            .iter()
+            .map(|w| {
+                acc += w;
+                if total > 0.0 {
+                    (acc / total) as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        LightSet { lights, cdf, probs }
+    }
+
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// Probability that [`Self::sample`] picks light `i`.
+    pub fn pick_probability(&self, i: usize) -> f32 {
+        self.probs[i]
+    }
+
+    /// Picks a light with `u[0]` and samples a forward ray from it with `u[1..5]`; the flux is
+    /// divided by the pick probability. None when no light emits.
+    pub fn sample(&self, geometry: &Geometry, u: [f32; 5]) -> Option<EmissionSample> {
+        let i = self.cdf.partition_point(|&c| c <= u[0]);
+        // Past the end only through rounding of the last cdf entry: take the last emitting light.
+        let i = if i < self.lights.len() {
+            i
+        } else {
+            self.probs.iter().rposition(|&p| p > 0.0)?
+        };
+        let p = self.probs[i];
+        if p <= 0.0 {
+            return None;
+        }
+        let mut s = self.lights[i].sample_emission(geometry, [u[1], u[2], u[3], u[4]]);
+        s.flux /= p;
+        Some(s)
+    }
+}

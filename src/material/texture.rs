@@ -1,0 +1,142 @@
+//! RGB image textures stored as per-texel spectra.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec2;
+
+use crate::spectrum::{MAX_BINS, Spectrum};
+
+#[derive(Debug, thiserror::Error)]
+pub enum TextureError {
+    #[error("cannot read texture {path}: {message}")]
+    Read { path: PathBuf, message: String },
+    #[error("texture {path}: unsupported file type (use .png or .exr)")]
+    Format { path: PathBuf },
+}
+
+/// Spectral texture: `n` bins per texel, row 0 at the top of the image. Lookups are bilinear
+/// with repeat wrapping; v = 0 is the bottom row (the OBJ / OpenGL convention).
+#[derive(Clone, Debug)]
+pub struct Texture {
+    width: usize,
+    height: usize,
+    n: usize,
+    data: Vec<f32>,
+}
+
+impl Texture {
+    /// Builds from linear RGB texels (row-major, top row first); `to_spectrum` upsamples each.
+    pub fn from_rgb(
+        width: usize,
+        height: usize,
+        rgb: &[[f32; 3]],
+        n_bins: usize,
+        to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
+    ) -> Texture {
+        let n = n_bins.clamp(1, MAX_BINS);
+        let mut data = Vec::with_capacity(width * height * n);
+        for &c in rgb.iter().take(width * height) {
+            data.extend_from_slice(to_spectrum(c).as_slice(n));
+        }
+        data.resize(width * height * n, 0.0);
+        Texture {
+            width: width.max(1),
+            height: height.max(1),
+            n,
+            data,
+        }
+    }
+
+    /// Loads a PNG (sRGB-encoded: decoded to linear) or an EXR (linear) file.
+    pub fn load(
+        path: &Path,
+        n_bins: usize,
+        to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
+    ) -> Result<Texture, TextureError> {
+        let read_err = |message: String| TextureError::Read {
+            path: path.to_path_buf(),
+            message,
+        };
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        let (w, h, rgb) = match ext.as_deref() {
+            Some("png") => {
+                let img = image::ImageReader::open(path)
+                    .map_err(|e| read_err(e.to_string()))?
+                    .decode()
+                    .map_err(|e| read_err(e.to_string()))?
+                    .to_rgb32f();
+                let (w, h) = (img.width() as usize, img.height() as usize);
+                let rgb = img.pixels().map(|p| p.0.map(srgb_to_linear)).collect();
+                (w, h, rgb)
+            }
+            Some("exr") => {
+                let img = exr::prelude::read_first_rgba_layer_from_file(
+                    path,
+                    |res, _| (res.width(), vec![[0.0f32; 3]; res.width() * res.height()]),
+                    |(w, px): &mut (usize, Vec<[f32; 3]>),
+                     pos,
+                     (r, g, b, _a): (f32, f32, f32, f32)| {
+                        px[pos.y() * *w + pos.x()] = [r, g, b];
+                    },
+                )
+                .map_err(|e| read_err(e.to_string()))?;
+                let size = img.layer_data.size;
+                let (_, px) = img.layer_data.channel_data.pixels;
+                (size.width(), size.height(), px)
+            }
+            _ => {
+                return Err(TextureError::Format {
+                    path: path.to_path_buf(),
+                });
+            }
+        };
+        if w == 0 || h == 0 {
+            return Err(read_err("empty image".into()));
+        }
+        Ok(Self::from_rgb(w, h, &rgb, n_bins, to_spectrum))
+    }
+
+    pub fn resolution(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    fn texel(&self, x: usize, y: usize) -> &[f32] {
+        let i = (y * self.width + x) * self.n;
+        &self.data[i..i + self.n]
+    }
+
+    /// Bilinear lookup with repeat wrap.
+    pub fn lookup(&self, uv: Vec2) -> Spectrum {
+        let fx = uv.x * self.width as f32 - 0.5;
+        let fy = (1.0 - uv.y) * self.height as f32 - 0.5;
+        let (x0, y0) = (fx.floor(), fy.floor());
+        let (tx, ty) = (fx - x0, fy - y0);
+        let wrap = |i: f32, n: usize| (i as i64).rem_euclid(n as i64) as usize;
+        let (xa, xb) = (wrap(x0, self.width), wrap(x0 + 1.0, self.width));
+        let (ya, yb) = (wrap(y0, self.height), wrap(y0 + 1.0, self.height));
+        let mut s = Spectrum::ZERO;
+        let corners = [
+            (xa, ya, (1.0 - tx) * (1.0 - ty)),
+            (xb, ya, tx * (1.0 - ty)),
+            (xa, yb, (1.0 - tx) * ty),
+            (xb, yb, tx * ty),
+        ];
+        for (x, y, w) in corners {
+            for (o, v) in s.0.iter_mut().zip(self.texel(x, y)) {
+                *o += w * v;
+            }
+        }
+        s
+    }
+}
+
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}

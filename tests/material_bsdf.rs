@@ -1,0 +1,306 @@
+//! Lambert, mirror and glossy: white furnace, sampling against independent quadrature, pdfs,
+//! reciprocity. Monte-Carlo comparisons use fixed seeds and |z| < 4.
+
+use std::f32::consts::{PI, TAU};
+
+use brume::geometry::Hit;
+use brume::material::{LobeKind, Material};
+use brume::spectrum::Spectrum;
+use glam::{Vec2, Vec3};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+const NB: usize = 8;
+const Z: f64 = 4.0;
+
+fn hit(n: Vec3) -> Hit {
+    let n = n.normalize();
+    Hit {
+        t: 1.0,
+        p: Vec3::ZERO,
+        ng: n,
+        ns: n,
+        uv: Vec2::new(0.3, 0.7),
+        shape: 0,
+    }
+}
+
+/// Direction at polar angle `theta_deg` from `n`, on `n`'s side (or the other side if `below`).
+fn dir_at(n: Vec3, theta_deg: f32, below: bool) -> Vec3 {
+    let n = n.normalize();
+    let t = n.cross(Vec3::new(0.6, 0.8, 0.0)).normalize();
+    let th = theta_deg.to_radians();
+    let d = n * th.cos() + t * th.sin();
+    if below { -d } else { d }
+}
+
+/// Running mean and standard error per bin.
+#[derive(Default)]
+struct Stats {
+    n: f64,
+    s: [f64; NB],
+    s2: [f64; NB],
+}
+impl Stats {
+    fn add(&mut self, v: &Spectrum) {
+        self.n += 1.0;
+        for i in 0..NB {
+            let x = v[i] as f64;
+            self.s[i] += x;
+            self.s2[i] += x * x;
+        }
+    }
+    fn add_zero(&mut self) {
+        self.n += 1.0;
+    }
+    fn mean(&self, i: usize) -> f64 {
+        self.s[i] / self.n
+    }
+    fn se(&self, i: usize) -> f64 {
+        let m = self.mean(i);
+        ((self.s2[i] / self.n - m * m).max(0.0) / self.n).sqrt()
+    }
+}
+
+/// Independent estimate of the integral of g(wi) over the sphere: uniform directions.
+fn sphere_quadrature(rng: &mut Pcg64Mcg, n: usize, g: impl Fn(Vec3) -> Spectrum) -> Stats {
+    let mut st = Stats::default();
+    for _ in 0..n {
+        let z = 1.0 - 2.0 * rng.random::<f32>();
+        let phi = TAU * rng.random::<f32>();
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        let d = Vec3::new(s * phi.cos(), s * phi.sin(), z);
+        st.add(&(g(d) * (4.0 * PI)));
+    }
+    st
+}
+
+fn albedo() -> Spectrum {
+    Spectrum::from_slice(&[0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1.0])
+}
+
+fn assert_z(a: f64, sa: f64, b: f64, sb: f64, what: &str) {
+    let se = (sa * sa + sb * sb).sqrt().max(1e-9);
+    let z = (a - b) / se;
+    assert!(z.abs() < Z, "{what}: {a} vs {b}, z = {z}");
+}
+
+/// E[weight] of `sample` against the quadrature of f |cos| (and pdf consistency).
+fn check_sampling(m: &Material, h: &Hit, wo: Vec3, seed: u64, n: usize, label: &str) {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let q = sphere_quadrature(&mut rng, n, |wi| m.eval(wo, wi, h) * wi.dot(h.ns).abs());
+    let mut st = Stats::default();
+    let mut produced = 0usize;
+    let pdf_q = sphere_quadrature(&mut rng, n, |wi| Spectrum::splat(m.pdf(wo, wi, h), 1));
+    for _ in 0..n {
+        let u = glam::Vec3::new(rng.random(), rng.random(), rng.random());
+        match m.sample(wo, h, u) {
+            Some(s) => {
+                produced += 1;
+                let p = m.pdf(wo, s.wi, h);
+                assert!(
+                    (p - s.pdf).abs() <= 1e-3 * p.max(1e-3),
+                    "{label}: pdf {p} vs {}",
+                    s.pdf
+                );
+                st.add(&s.weight);
+            }
+            None => st.add_zero(),
+        }
+    }
+    for i in 0..NB {
+        assert_z(
+            st.mean(i),
+            st.se(i),
+            q.mean(i),
+            q.se(i),
+            &format!("{label} bin {i}"),
+        );
+    }
+    // The pdf integrates to the probability that sampling produces a direction.
+    let frac = produced as f64 / n as f64;
+    let frac_se = (frac * (1.0 - frac) / n as f64).sqrt();
+    assert_z(
+        pdf_q.mean(0),
+        pdf_q.se(0),
+        frac,
+        frac_se,
+        &format!("{label} pdf normalisation"),
+    );
+}
+
+#[test]
+fn lambert_furnace_equals_albedo_and_sampling_matches_eval() {
+    let m = Material::lambert(albedo());
+    for (k, (n, theta, below)) in [
+        (Vec3::Z, 0.0, false),
+        (Vec3::new(0.3, -0.2, 1.0), 60.0, false),
+        (Vec3::new(-0.5, 0.1, 0.4), 85.0, true),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let h = hit(n);
+        let wo = dir_at(n, theta, below);
+        let mut rng = Pcg64Mcg::seed_from_u64(100 + k as u64);
+        let q = sphere_quadrature(&mut rng, 400_000, |wi| {
+            m.eval(wo, wi, &h) * wi.dot(h.ns).abs()
+        });
+        for i in 0..NB {
+            assert_z(
+                q.mean(i),
+                q.se(i),
+                albedo()[i] as f64,
+                0.0,
+                "lambert furnace",
+            );
+        }
+        check_sampling(&m, &h, wo, 200 + k as u64, 200_000, "lambert");
+        assert_eq!(m.diffuse_probability(wo, &h), 1.0);
+        assert!(m.sample_nondiffuse(wo, &h, Vec3::splat(0.5)).is_none());
+        let s = m.sample(wo, &h, Vec3::new(0.2, 0.9, 0.1)).unwrap();
+        assert_eq!(s.kind, LobeKind::Diffuse);
+        assert!(
+            s.wi.dot(h.ng) * wo.dot(h.ng) > 0.0,
+            "reflects into wo's side"
+        );
+    }
+}
+
+#[test]
+fn glossy_furnace_never_exceeds_one() {
+    let white = Spectrum::splat(1.0, NB);
+    for (k, rough) in [0.02f32, 0.1, 0.3, 0.6, 1.0].into_iter().enumerate() {
+        let m = Material::glossy(white, 1.5, rough, NB);
+        let h = hit(Vec3::Z);
+        for theta in [0.0f32, 30.0, 60.0, 80.0, 89.0] {
+            let wo = dir_at(Vec3::Z, theta, false);
+            let mut rng = Pcg64Mcg::seed_from_u64(300 + k as u64);
+            let mut st = Stats::default();
+            for _ in 0..100_000 {
+                let u = Vec3::new(rng.random(), rng.random(), rng.random());
+                match m.sample(wo, &h, u) {
+                    Some(s) => st.add(&s.weight),
+                    None => st.add_zero(),
+                }
+            }
+            let (r, se) = (st.mean(0), st.se(0));
+            assert!(
+                r < 1.0 + Z * se,
+                "roughness {rough}, theta {theta}: R = {r} +- {se}"
+            );
+            // Nor absorbing much: single-scattering GGX loses some energy at grazing angles.
+            eprintln!("glossy furnace: roughness {rough} theta {theta}: R = {r:.3} +- {se:.3}");
+            assert!(
+                theta > 60.0 || r > 0.7,
+                "roughness {rough}, theta {theta}: R = {r}"
+            );
+        }
+    }
+}
+
+#[test]
+fn glossy_sampling_matches_eval() {
+    for (k, rough) in [0.15f32, 0.4, 0.8].into_iter().enumerate() {
+        let m = Material::glossy(albedo(), 1.5, rough, NB);
+        let n = Vec3::new(0.2, 0.1, 1.0);
+        let h = hit(n);
+        for (j, theta) in [10.0f32, 45.0, 75.0].into_iter().enumerate() {
+            let wo = dir_at(n, theta, j == 2);
+            check_sampling(
+                &m,
+                &h,
+                wo,
+                400 + 10 * k as u64 + j as u64,
+                400_000,
+                &format!("glossy {rough} {theta}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn glossy_split_into_diffuse_and_nondiffuse_parts() {
+    let m = Material::glossy(albedo(), 1.5, 0.3, NB);
+    let h = hit(Vec3::Z);
+    let wo = dir_at(Vec3::Z, 40.0, false);
+    let mut rng = Pcg64Mcg::seed_from_u64(500);
+    let spec = sphere_quadrature(&mut rng, 400_000, |wi| {
+        (m.eval(wo, wi, &h) - m.eval_diffuse(wo, wi, &h)) * wi.z.abs()
+    });
+    let mut st = Stats::default();
+    for _ in 0..200_000 {
+        let u = Vec3::new(rng.random(), rng.random(), rng.random());
+        match m.sample_nondiffuse(wo, &h, u) {
+            Some(s) => {
+                assert_eq!(s.kind, LobeKind::Glossy);
+                st.add(&s.weight)
+            }
+            None => st.add_zero(),
+        }
+    }
+    for i in 0..NB {
+        assert_z(
+            st.mean(i),
+            st.se(i),
+            spec.mean(i),
+            spec.se(i),
+            "glossy nondiffuse",
+        );
+    }
+    let p = m.diffuse_probability(wo, &h);
+    assert!(p > 0.0 && p < 1.0);
+}
+
+#[test]
+fn reciprocity() {
+    let mut rng = Pcg64Mcg::seed_from_u64(600);
+    let mats = [
+        Material::lambert(albedo()),
+        Material::glossy(albedo(), 1.6, 0.25, NB),
+        Material::glossy(albedo(), 1.3, 0.8, NB),
+    ];
+    let h = hit(Vec3::new(0.1, 0.3, 1.0));
+    let mut nonzero = 0;
+    for _ in 0..10_000 {
+        let a = dir_at(h.ng, rng.random::<f32>() * 89.0, false);
+        let b = glam::Quat::from_axis_angle(h.ng, rng.random::<f32>() * TAU)
+            * dir_at(h.ng, rng.random::<f32>() * 89.0, false);
+        for m in &mats {
+            let (f1, f2) = (m.eval(a, b, &h), m.eval(b, a, &h));
+            for i in 0..NB {
+                assert!(
+                    (f1[i] - f2[i]).abs() <= 1e-4 * f1[i].abs().max(1e-3),
+                    "{m:?}: {} vs {}",
+                    f1[i],
+                    f2[i]
+                );
+            }
+            nonzero += (f1[0] > 0.0) as usize;
+        }
+    }
+    assert!(nonzero > 25_000);
+}
+
+#[test]
+fn mirror_reflects_exactly_and_reciprocally() {
+    let r = albedo();
+    let m = Material::mirror(r);
+    let n = Vec3::new(0.3, -0.4, 1.0).normalize();
+    let h = hit(n);
+    for (theta, below) in [(0.0, false), (35.0, false), (80.0, true)] {
+        let wo = dir_at(n, theta, below);
+        let s = m.sample(wo, &h, Vec3::splat(0.3)).unwrap();
+        assert_eq!(s.kind, LobeKind::Specular);
+        assert_eq!(s.weight, r);
+        assert!((s.wi.dot(n) - wo.dot(n)).abs() < 1e-6, "equal angles");
+        assert!(
+            (s.wi + wo).cross(n).length() < 1e-5,
+            "in the plane of incidence"
+        );
+        let back = m.sample_nondiffuse(s.wi, &h, Vec3::splat(0.7)).unwrap();
+        assert!((back.wi - wo).length() < 1e-5, "reciprocal path");
+        assert_eq!(m.eval(wo, s.wi, &h), Spectrum::ZERO);
+        assert_eq!(m.diffuse_probability(wo, &h), 0.0);
+    }
+}
