@@ -14,7 +14,7 @@ use super::LoadedScene;
 use crate::camera::Camera;
 use crate::geometry::{self, Geometry, Ray, ShapeKind, Transform};
 use crate::light::{Light, LightSet};
-use crate::material::{Material, Texture};
+use crate::material::{Albedo, Material, Texture};
 use crate::medium::{HomogeneousMedium, MultiSphereWalk};
 use crate::scene::desc::{IntegratorDesc, Projection, SceneDesc};
 use crate::spectrum::{SpectralGrid, Spectrum};
@@ -87,32 +87,32 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
                     None => Ok(Spectrum::splat(1.0, n)),
                 }
             };
+            // A texture multiplies the albedo: fold the albedo into each texel.
+            let albedo_value = albedo("albedo")?;
             let texture = match &m.texture {
                 Some(t) => {
                     let path = scene.resolve(t);
-                    let convert = |rgb: [f32; 3]| spectra.rgb_reflectance(rgb);
-                    let tex = Texture::load(&path, &convert)
+                    let convert = |rgb: [f32; 3]| spectra.rgb_reflectance(rgb) * albedo_value;
+                    let tex = Texture::load(&path, n, &convert)
                         .map_err(|e| err(scene, format!("{key}.texture"), e.to_string()))?;
                     Some(Arc::new(tex))
                 }
                 None => None,
+            };
+            let surface: Albedo = match texture {
+                Some(t) => t.into(),
+                None => albedo_value.into(),
             };
             let ior = match &m.ior {
                 Some(i) => spectra.unbounded(i, &format!("{key}.ior"))?,
                 None => Spectrum::splat(1.5, n),
             };
             Ok(match m.kind {
-                MaterialKind::Lambert => match texture {
-                    Some(t) => Material::lambert_textured(t, albedo("albedo")?),
-                    None => Material::lambert(albedo("albedo")?),
-                },
-                MaterialKind::Mirror => Material::mirror(albedo("albedo")?),
-                MaterialKind::Glossy => Material::glossy(
-                    albedo("albedo")?,
-                    texture,
-                    ior[0],
-                    m.roughness.unwrap_or(0.1),
-                ),
+                MaterialKind::Lambert => Material::Lambert { albedo: surface },
+                MaterialKind::Mirror => Material::mirror(albedo_value),
+                MaterialKind::Glossy => {
+                    Material::glossy(surface, ior[0], m.roughness.unwrap_or(0.1), n)
+                }
                 MaterialKind::Dielectric => Material::dielectric(ior, n),
             })
         })
