@@ -23,7 +23,7 @@ pub struct SpectrumArgs {
     #[arg(long, default_value = "1931")]
     pub observer: Observer,
     /// Number of spectral bins.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = SpectralGrid::default().n)]
     pub bins: usize,
     #[arg(long, default_value_t = 380.0)]
     pub lambda_min: f64,
