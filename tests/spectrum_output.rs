@@ -61,7 +61,7 @@ fn writes_exr_and_png_without_leaving_temporaries() {
             .channel_data
             .list
             .iter()
-            .find(|c| c.name == Text::from(name))
+            .find(|c| c.name.to_string() == name)
             .unwrap();
         match &c.sample_data {
             FlatSamples::F32(v) => v.clone(),

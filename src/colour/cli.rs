@@ -82,9 +82,10 @@ pub fn run(args: &SpectrumArgs) -> Result<String, ColourError> {
             format!("{:#}", matrices())
         });
     }
-    if !(1..=MAX_BINS).contains(&args.bins)
-        || !(args.lambda_max > args.lambda_min && args.lambda_min > 0.0)
-    {
+    let valid = (1..=MAX_BINS).contains(&args.bins)
+        && args.lambda_max > args.lambda_min
+        && args.lambda_min > 0.0;
+    if !valid {
         return Err(ColourError::Other(format!(
             "--bins must be 1..={MAX_BINS} and 0 < --lambda-min < --lambda-max"
         )));

@@ -77,10 +77,10 @@ mod tests {
     fn inverse_round_trips() {
         let m = [[0.4, 0.35, 0.18], [0.21, 0.71, 0.07], [0.02, 0.12, 0.95]];
         let p = mul(&m, &invert(&m));
-        for i in 0..3 {
-            for j in 0..3 {
+        for (i, row) in p.iter().enumerate() {
+            for (j, v) in row.iter().enumerate() {
                 let e = if i == j { 1.0 } else { 0.0 };
-                assert!((p[i][j] - e).abs() < 1e-12);
+                assert!((v - e).abs() < 1e-12);
             }
         }
     }

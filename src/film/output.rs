@@ -113,10 +113,8 @@ fn check_sizes(img: &SpectralImage) -> Result<(), String> {
     if img.data.len() != want {
         return bad("image data", img.data.len());
     }
-    if let Some(n) = &img.noise {
-        if n.len() != want {
-            return bad("noise layer", n.len());
-        }
+    if let Some(n) = img.noise.as_ref().filter(|n| n.len() != want) {
+        return bad("noise layer", n.len());
     }
     for (name, l) in &img.layers {
         if l.len() != want {

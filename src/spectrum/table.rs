@@ -208,15 +208,13 @@ impl SpectralTable {
                     format!("wavelength {lambda} nm must be positive"),
                 ));
             }
-            if let Some(&prev) = wavelengths.last() {
-                if lambda <= prev {
-                    return Err(perr(
-                        lno,
-                        format!(
-                            "wavelengths must be strictly increasing: {lambda} nm follows {prev} nm"
-                        ),
-                    ));
-                }
+            if let Some(&prev) = wavelengths.last().filter(|&&p| lambda <= p) {
+                return Err(perr(
+                    lno,
+                    format!(
+                        "wavelengths must be strictly increasing: {lambda} nm follows {prev} nm"
+                    ),
+                ));
             }
             wavelengths.push(lambda);
             for (d, v) in data.iter_mut().zip(&row[1..]) {
