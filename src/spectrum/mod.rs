@@ -5,6 +5,7 @@ mod analytic;
 mod builtin;
 mod error;
 mod grid;
+pub mod rgb;
 mod table;
 mod value;
 
@@ -12,5 +13,6 @@ pub use analytic::{constant, power_law};
 pub use builtin::{builtin_names, builtin_table, resolve};
 pub use error::SpectrumError;
 pub use grid::SpectralGrid;
+pub use rgb::{RgbKind, rgb_to_spectrum};
 pub use table::{Extrapolation, PiecewiseLinear, SpectralTable};
 pub use value::{MAX_BINS, Spectrum};
