@@ -2,7 +2,7 @@
 
 mod info;
 mod progress;
-// mod render;
+mod render;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -24,6 +24,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Validate a scene file and summarise it (counts, spectral bins, memory estimate).
     Info(SceneArgs),
+    /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
+    /// emission spectrum.
+    Spectrum(brume::colour::cli::SpectrumArgs),
 }
 
 /// A scene file and overrides of its values.
@@ -65,7 +68,11 @@ pub struct RenderArgs {
 
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Command::Render(_a) => anyhow::bail!("render: not wired yet"),
+        Command::Render(a) => render::run(&a),
         Command::Info(a) => info::run(&a),
+        Command::Spectrum(a) => {
+            println!("{}", brume::colour::cli::run(&a)?);
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }

@@ -2,6 +2,30 @@
 
 use serde::{Deserialize, Serialize};
 
+mod adapt;
+pub mod cli;
+mod convert;
+mod display;
+pub mod matrix;
+mod observer;
+mod space;
+
+pub use adapt::Cat;
+pub use convert::FilmToRgb;
+pub use display::{srgb_decode, srgb_encode};
+pub use observer::{Cmfs, XyzWeights};
+pub use space::{ACES_XY, AP1_PRIMARIES, D65_XY, E_XY, REC709_PRIMARIES, XYZ_PRIMARIES};
+
+use crate::spectrum::SpectrumError;
+
+#[derive(Debug, thiserror::Error)]
+pub enum ColourError {
+    #[error(transparent)]
+    Spectrum(#[from] SpectrumError),
+    #[error("{0}")]
+    Other(String),
+}
+
 /// The RGB (or XYZ) space scene-linear outputs are written in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -18,9 +42,11 @@ pub enum ColourSpace {
 /// CIE standard observer used to turn spectra into XYZ.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Observer {
+    /// CIE 1931 2-degree.
     #[default]
     #[serde(rename = "1931")]
     Cie1931,
+    /// CIE 1964 10-degree.
     #[serde(rename = "1964")]
     Cie1964,
 }
@@ -34,4 +60,15 @@ pub enum ViewTransform {
     Clip,
     /// Exposure, a filmic shoulder, sRGB encoding.
     Filmic,
+}
+
+impl std::str::FromStr for Observer {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "1931" | "cie1931" | "2" => Ok(Observer::Cie1931),
+            "1964" | "cie1964" | "10" => Ok(Observer::Cie1964),
+            _ => Err(format!("unknown observer {s:?} (use 1931 or 1964)")),
+        }
+    }
 }

@@ -67,7 +67,6 @@ struct ForwardTracer<'a> {
 impl ForwardTracer<'_> {
     fn trace(&mut self, rng: &mut Rng) {
         let scene = self.scene;
-        let n = scene.grid.n;
         let u = [rng.random(), rng.random(), rng.random(), rng.random(), rng.random()];
         let Some(es) = scene.lights.sample(&scene.geometry, u) else { return };
         let mut ray = es.ray;

@@ -92,6 +92,8 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             let texture = match &m.texture {
                 Some(t) => {
                     let path = scene.resolve(t);
+                    // Surfaces a broken upsampling table as an error before texels are converted.
+                    spectra.reflectance(&SpectrumRef::Rgb([0.5; 3]), &format!("{key}.texture"))?;
                     let convert = |rgb: [f32; 3]| spectra.rgb_reflectance(rgb) * albedo_value;
                     let tex = Texture::load(&path, n, &convert)
                         .map_err(|e| err(scene, format!("{key}.texture"), e.to_string()))?;

@@ -38,7 +38,7 @@ impl<'a> SpectrumResolver<'a> {
     pub fn resolve(&self, r: &SpectrumRef, kind: RgbKind, key: &str) -> Result<Spectrum, SceneError> {
         match r {
             SpectrumRef::Constant(v) => Ok(spectrum::constant(*v as f32, &self.grid)),
-            SpectrumRef::Rgb(rgb) => Ok(self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], kind)),
+            SpectrumRef::Rgb(rgb) => self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], kind),
             SpectrumRef::Named(name) => match self.named.get(name) {
                 Some(desc) => self.named_spectrum(name, desc, kind),
                 None => self.file_or_builtin(name, None, key),
@@ -68,7 +68,7 @@ impl<'a> SpectrumResolver<'a> {
         } else if let Some(rgb) = d.rgb {
             // The spectrum's own rgb_kind wins over the use site's.
             let _ = kind;
-            self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], d.rgb_kind)
+            self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], d.rgb_kind)?
         } else if let Some(p) = &d.power_law {
             spectrum::power_law(p.k, p.lambda_ref, p.p, &self.grid)
         } else {
@@ -77,8 +77,13 @@ impl<'a> SpectrumResolver<'a> {
         Ok(base * d.scale.unwrap_or(1.0) as f32)
     }
 
-    fn rgb(&self, rgb: [f32; 3], kind: RgbKind) -> Spectrum {
-        spectrum::rgb_to_spectrum(rgb, kind.into(), &self.grid)
+    fn rgb(&self, rgb: [f32; 3], kind: RgbKind) -> Result<Spectrum, SceneError> {
+        let kind = match kind {
+            RgbKind::Reflectance => spectrum::RgbKind::Reflectance,
+            RgbKind::Emission => spectrum::RgbKind::Illuminant,
+            RgbKind::Unbounded => spectrum::RgbKind::Unbounded,
+        };
+        spectrum::rgb_to_spectrum(rgb, kind, &self.grid).map_err(|e| self.error("", e.to_string()))
     }
 
     pub fn reflectance(&self, r: &SpectrumRef, key: &str) -> Result<Spectrum, SceneError> {
@@ -95,6 +100,6 @@ impl<'a> SpectrumResolver<'a> {
 
     /// Texel conversion for textures (sRGB-encoded values already decoded to linear).
     pub fn rgb_reflectance(&self, rgb: [f32; 3]) -> Spectrum {
-        self.rgb(rgb, RgbKind::Reflectance)
+        self.rgb(rgb, RgbKind::Reflectance).unwrap_or(Spectrum::ZERO)
     }
 }

@@ -55,7 +55,10 @@ impl SpectralGrid {
 }
 
 impl Default for SpectralGrid {
+    /// 32 bins of 12.5 nm over 380-780 nm: the fewest (of 8/16/32/64) for which the 24
+    /// ColorChecker patches under D65 and A stay within mean CIEDE2000 0.3 / max 1.0 of the
+    /// 1 nm reference (docs/colour.md).
     fn default() -> Self {
-        Self::new(16, 380.0, 780.0)
+        Self::new(32, 380.0, 780.0)
     }
 }

@@ -103,6 +103,8 @@ impl IndexMut<usize> for Spectrum {
 
 macro_rules! elementwise {
     ($tr:ident, $f:ident, $tra:ident, $fa:ident, $op:tt) => {
+        // One macro serves + * /, so the binary operator is spelled out, not its `op=` form.
+        #[allow(clippy::assign_op_pattern)]
         impl $tr for Spectrum {
             type Output = Spectrum;
             #[inline]
@@ -113,6 +115,7 @@ macro_rules! elementwise {
                 self
             }
         }
+        #[allow(clippy::assign_op_pattern)]
         impl $tr<f32> for Spectrum {
             type Output = Spectrum;
             #[inline]

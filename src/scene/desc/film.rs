@@ -1,6 +1,6 @@
 use serde::{Deserialize, Serialize};
 
-use crate::colour::{ColourSpace, Observer, ViewTransform};
+use crate::colour::{Cat, ColourSpace, Observer, ViewTransform};
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -12,6 +12,8 @@ pub struct FilmDesc {
     pub lambda_max: f64,
     pub observer: Observer,
     pub colour_space: ColourSpace,
+    /// Chromatic adaptation to a working space whose white is not D65 (ACEScg).
+    pub adaptation: Cat,
     pub view: ViewTransform,
     /// Exposure in stops for display outputs.
     pub exposure: f32,
@@ -28,11 +30,12 @@ pub struct FilmDesc {
 impl Default for FilmDesc {
     fn default() -> Self {
         Self {
-            bins: 16,
+            bins: 32,
             lambda_min: 380.0,
             lambda_max: 780.0,
             observer: Observer::default(),
             colour_space: ColourSpace::default(),
+            adaptation: Cat::default(),
             view: ViewTransform::default(),
             exposure: 0.0,
             half: false,
@@ -53,6 +56,7 @@ impl FilmDesc {
             half: self.half,
             spectral_layers: self.spectral_layers,
             noise_layer: self.noise_layer,
+            cat: self.adaptation,
         }
     }
 

@@ -1,0 +1,132 @@
+//! OpenEXR output: working-space RGB with its `chromaticities`, plus the optional spectral
+//! layout of Fichet, Pacanowski and Wilkie (JCGT 2021) and a standard-error layer.
+
+use std::path::Path;
+
+use exr::meta::attribute::Chromaticities;
+use exr::prelude::*;
+
+use super::{OutputOptions, to_rgb};
+use crate::colour::{ColourSpace, FilmToRgb};
+use crate::film::SpectralImage;
+
+/// The spectral layout's name for an emissive (unpolarised, Stokes S0) channel at `centre` nm:
+/// the wavelength printed with six decimals and a comma as decimal separator, so that the
+/// dot stays the layer separator: 550 nm -> `S0.550,000000nm`.
+pub fn spectral_channel_name(centre: f64) -> String {
+    format!("S0.{}nm", format!("{centre:.6}").replace('.', ","))
+}
+
+fn samples(values: Vec<f32>, half: bool) -> FlatSamples {
+    if half {
+        FlatSamples::F16(values.into_iter().map(f16::from_f32).collect())
+    } else {
+        FlatSamples::F32(values)
+    }
+}
+
+/// One channel per RGB component of `rgb`, named `<prefix>R` etc.
+fn rgb_channels(
+    out: &mut Vec<AnyChannel<FlatSamples>>,
+    prefix: &str,
+    rgb: &[[f32; 3]],
+    half: bool,
+) {
+    for (c, name) in ["R", "G", "B"].iter().enumerate() {
+        let v = rgb.iter().map(|p| p[c]).collect();
+        out.push(AnyChannel::new(
+            Text::from(format!("{prefix}{name}").as_str()),
+            samples(v, half),
+        ));
+    }
+}
+
+/// One channel per bin, named `<prefix>S0.<centre>nm`.
+fn spectral_channels(
+    out: &mut Vec<AnyChannel<FlatSamples>>,
+    prefix: &str,
+    img: &SpectralImage,
+    data: &[f32],
+    half: bool,
+) {
+    let n = img.grid.n;
+    for i in 0..n {
+        let v = data.iter().skip(i).step_by(n).copied().collect();
+        let name = format!("{prefix}{}", spectral_channel_name(img.grid.centre(i)));
+        out.push(AnyChannel::new(Text::from(name.as_str()), samples(v, half)));
+    }
+}
+
+pub(super) fn write(
+    path: &Path,
+    img: &SpectralImage,
+    opts: &OutputOptions,
+) -> std::result::Result<(), String> {
+    let space = opts.colour_space;
+    let half = opts.half;
+    let mut ch = Vec::new();
+    rgb_channels(&mut ch, "", &to_rgb(img, &img.data, space, opts)?, half);
+    if opts.spectral_layers {
+        spectral_channels(&mut ch, "", img, &img.data, half);
+    }
+    for (name, data) in &img.layers {
+        rgb_channels(
+            &mut ch,
+            &format!("{name}."),
+            &to_rgb(img, data, space, opts)?,
+            half,
+        );
+        if opts.spectral_layers {
+            spectral_channels(&mut ch, &format!("{name}."), img, data, half);
+        }
+    }
+    if let (true, Some(noise)) = (opts.noise_layer, &img.noise) {
+        let conv =
+            FilmToRgb::new(space, opts.observer, &img.grid, opts.cat).map_err(|e| e.to_string())?;
+        let rgb: Vec<[f32; 3]> = noise
+            .chunks_exact(img.grid.n)
+            .map(|px| conv.rgb_std_error(px))
+            .collect();
+        rgb_channels(&mut ch, "noise.", &rgb, half);
+        if opts.spectral_layers {
+            spectral_channels(&mut ch, "noise.", img, noise, half);
+        }
+    }
+
+    let layer = Layer::new(
+        (img.width, img.height),
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(ch.into()),
+    );
+    let mut image = Image::from_layer(layer);
+    let (p, w) = space.chromaticities();
+    let v = |xy: [f64; 2]| Vec2(xy[0] as f32, xy[1] as f32);
+    image.attributes.chromaticities = Some(Chromaticities {
+        red: v(p[0]),
+        green: v(p[1]),
+        blue: v(p[2]),
+        white: v(w),
+    });
+    let mut text = |k: &str, val: &str| {
+        image
+            .attributes
+            .other
+            .insert(Text::from(k), AttributeValue::Text(Text::from(val)));
+    };
+    text(
+        "brumeColourSpace",
+        match space {
+            ColourSpace::Srgb => "lin_rec709",
+            ColourSpace::Acescg => "acescg",
+            ColourSpace::Xyz => "ciexyz",
+        },
+    );
+    if opts.spectral_layers {
+        text("spectralLayoutVersion", "1.0");
+        // The layout's unit for emissive data; channel values are spectral radiance, i.e. per
+        // nanometre (bin averages), as in pbrt-v4's spectral film.
+        text("emissiveUnits", "W.m^-2.sr^-1");
+    }
+    image.write().to_file(path).map_err(|e| e.to_string())
+}
