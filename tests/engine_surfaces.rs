@@ -89,20 +89,36 @@ irradiance = 1.0
 spectrum = 1.0
 "#;
     // The view covers x in [0.35, 0.55]; the quad ends at x = 0.5 (pixel 30). Pixels 20..30
-    // lie within 0.05 of the edge.
-    let deficit = |r: &str| {
-        let s = scene(text, &[&format!("integrator.radius={r}")]);
-        let img = render(&s, 7, 4);
+    // cover the band x in [0.45, 0.5]. A sphere at distance d < R from the edge keeps only the
+    // part of its disc on the quad: the band's expected deficit is the mean lost disc fraction.
+    let analytic = |r: f64| {
+        let m = 2000;
+        (0..m)
+            .map(|i| {
+                let d = 0.05 * (i as f64 + 0.5) / m as f64;
+                if d >= r {
+                    0.0
+                } else {
+                    (r * r * (d / r).acos() - d * (r * r - d * d).sqrt()) / (PI * r * r)
+                }
+            })
+            .sum::<f64>()
+            / m as f64
+    };
+    let deficit = |r: f64| {
+        let s = scene(text, &[&format!("integrator.radius={r}"), "integrator.forward_rays=400000"]);
+        let img = render(&s, 7, 16);
         let inner = region_mean(&img, &img.data, 0, 10, 0, 4)[0];
         let edge = region_mean(&img, &img.data, 20, 30, 0, 4)[0];
         1.0 - edge / inner
     };
-    let big = deficit("0.05");
-    let small = deficit("0.01");
-    eprintln!("edge deficit: R=0.05 -> {big:.4}, R=0.01 -> {small:.4}");
-    // Analytic mean deficit of the band for R = 0.05 is about 0.11 (disc cut by the edge).
-    assert!(big > 0.06, "large radius should darken the edge band: {big}");
-    assert!(small < big / 3.0, "edge bias must shrink with R: {small} vs {big}");
+    for r in [0.05, 0.01] {
+        let (got, want) = (deficit(r), analytic(r));
+        eprintln!("edge band deficit R={r}: measured {got:.4}, analytic {want:.4}");
+        // About 0.65% noise on the deficit at these settings: 0.025 is nearly 4 sigma.
+        assert!((got - want).abs() < 0.025, "R={r}: {got} vs {want}");
+    }
+    assert!(analytic(0.01) < analytic(0.05) / 4.0);
 }
 
 fn point_light_scene(radius: f64, alpha: f64) -> String {
@@ -193,15 +209,16 @@ fn point_light_above_plane_and_progressive_radius() {
     let z_exact = (mean[0] - exact) / se[0];
     assert!(z_exact < -6.0, "a large fixed radius must be measurably biased (z = {z_exact})");
 
-    // Progressive reduction from the same radius: after 64 passes R has shrunk about 8x and
-    // the bias with it.
-    let s = scene(&point_light_scene(0.15, 0.5), &["integrator.forward_rays=20000"]);
-    let img = render(&s, 3, 64);
+    // Progressive reduction from the same radius (alpha = 0.3): R^2 after p passes is about
+    // p^-0.7 of the start, and the blur bias (second order in R) falls with it; averaged over
+    // 100 passes the expected bias is about 0.15 of the fixed-radius one.
+    let s = scene(&point_light_scene(0.15, 0.3), &["integrator.forward_rays=20000"]);
+    let img = render(&s, 3, 100);
     let prog = region_mean(&img, &img.data, 0, 8, 0, 8)[0];
     let bias_fixed = exact - blurred;
     let bias_prog = exact - prog;
     eprintln!("bias fixed {bias_fixed:.3e}, progressive {bias_prog:.3e}");
-    assert!(bias_prog.abs() < 0.35 * bias_fixed, "progressive radius must shrink the bias");
+    assert!(bias_prog.abs() < 0.5 * bias_fixed, "progressive radius must shrink the bias");
 }
 
 /// A parallel beam turned down by a 45-degree mirror onto a floor: the forward rays pass the

@@ -1,7 +1,7 @@
 use glam::{EulerRot, Mat3, Mat4, Quat, Vec3};
 
-/// Object-to-world transform: scale, then rotate (Euler angles in degrees, glam's intrinsic XYZ
-/// order), then translate.
+/// Object-to-world transform: scale, then rotate (Euler angles in degrees: about the world X
+/// axis first, then Y, then Z, i.e. R = Rz Ry Rx), then translate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
     m: Mat4,
@@ -24,11 +24,12 @@ impl Transform {
     };
 
     pub fn new(translate: Vec3, rotate_deg: Vec3, scale: Vec3) -> Transform {
+        // glam's ZYX order composes Rz * Ry * Rx: X is applied to the shape first.
         let q = Quat::from_euler(
-            EulerRot::XYZ,
-            rotate_deg.x.to_radians(),
-            rotate_deg.y.to_radians(),
+            EulerRot::ZYX,
             rotate_deg.z.to_radians(),
+            rotate_deg.y.to_radians(),
+            rotate_deg.x.to_radians(),
         );
         Self::from_matrix(Mat4::from_scale_rotation_translation(scale, q, translate))
     }
@@ -78,5 +79,22 @@ impl Transform {
     /// then need their winding reversed.
     pub fn flips(&self) -> bool {
         self.m.determinant() < 0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn euler_angles_apply_x_then_y_then_z() {
+        // +Z rotated by -90 about Y gives -X; then +45 about Z gives (-1, -1, 0)/sqrt(2).
+        let t = Transform::new(Vec3::ZERO, Vec3::new(0.0, -90.0, 45.0), Vec3::ONE);
+        let n = t.normal(Vec3::Z).normalize();
+        let want = Vec3::new(-1.0, -1.0, 0.0).normalize();
+        assert!(n.distance(want) < 1e-5, "{n}");
+        // -90 about X turns +Z into +Y.
+        let t = Transform::new(Vec3::ZERO, Vec3::new(-90.0, 0.0, 0.0), Vec3::ONE);
+        assert!(t.normal(Vec3::Z).normalize().distance(Vec3::Y) < 1e-5);
     }
 }
