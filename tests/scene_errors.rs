@@ -42,7 +42,7 @@ fn the_good_scene_loads() {
     let s = load_str(GOOD, Path::new("scenes/test.toml"), &[]).expect("good scene");
     assert_eq!(s.desc.camera.width, 64);
     assert_eq!(s.desc.integrator.q, 0.5);
-    assert_eq!(s.desc.film.bins, 16, "default bins");
+    assert_eq!(s.desc.film.bins, 32, "default bins");
 }
 
 #[test]

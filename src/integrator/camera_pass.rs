@@ -33,6 +33,17 @@ impl CameraOutput {
         at
     }
 
+    /// Memory the gather structure built from these records will take (records, weights,
+    /// and about two BVH nodes per record).
+    pub fn gather_bytes(&self) -> usize {
+        let node = std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>();
+        let records = self.surfaces.len() + self.volumes.len();
+        self.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
+            + self.volumes.len() * std::mem::size_of::<VolumeRecord>()
+            + self.weights.len() * 4
+            + records * (2 * node + 4)
+    }
+
     /// Appends `other`, rebasing its weight offsets.
     pub fn append(&mut self, mut other: CameraOutput) {
         let base = self.weights.len() as u32;
@@ -46,32 +57,46 @@ impl CameraOutput {
     }
 }
 
-/// Runs the camera pass of pass `pass`; rows are independent work items, merged in row order.
-pub fn camera_pass(scene: &Scene, seed: u64, pass: u64) -> CameraOutput {
+/// Rows traced together before the memory budget is checked: fixed, so that where a pass is
+/// split into tiles never depends on the thread count.
+pub const ROW_BATCH: u32 = 8;
+
+/// Runs the camera pass of pass `pass` from row `first_row` on, until the gather records would
+/// exceed `budget_bytes` (at least one batch of rows). Rows are independent work items merged in
+/// row order. Returns the output and the first row not traced.
+pub fn camera_pass(scene: &Scene, seed: u64, pass: u64, first_row: u32, budget_bytes: usize) -> (CameraOutput, u32) {
     let (w, h) = scene.camera.resolution();
-    let rows: Vec<CameraOutput> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let mut out = CameraOutput::default();
-            let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
-            for x in 0..w {
-                let pixel = y * w + x;
-                for _ in 0..scene.settings.camera_samples {
-                    let px = x as f32 + rng.random::<f32>();
-                    let py = y as f32 + rng.random::<f32>();
-                    let ray = scene.camera.generate_ray(px, py);
-                    CameraPath::new(scene, pixel).trace(ray, &mut rng, &mut out);
-                    out.paths += 1;
-                }
-            }
-            out
-        })
-        .collect();
     let mut all = CameraOutput::default();
-    for r in rows {
-        all.append(r);
+    let mut row = first_row;
+    while row < h {
+        let end = (row + ROW_BATCH).min(h);
+        let rows: Vec<CameraOutput> = (row..end)
+            .into_par_iter()
+            .map(|y| {
+                let mut out = CameraOutput::default();
+                let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
+                for x in 0..w {
+                    let pixel = y * w + x;
+                    for _ in 0..scene.settings.camera_samples {
+                        let px = x as f32 + rng.random::<f32>();
+                        let py = y as f32 + rng.random::<f32>();
+                        let ray = scene.camera.generate_ray(px, py);
+                        CameraPath::new(scene, pixel).trace(ray, &mut rng, &mut out);
+                        out.paths += 1;
+                    }
+                }
+                out
+            })
+            .collect();
+        for r in rows {
+            all.append(r);
+        }
+        row = end;
+        if all.gather_bytes() > budget_bytes {
+            break;
+        }
     }
-    all
+    (all, row)
 }
 
 /// Adds the camera pass's directly seen radiance into the pass buffer.

@@ -25,7 +25,9 @@ pub fn chunk_size(total: u64) -> u64 {
     (total / 256).clamp(4096, 1 << 20)
 }
 
-pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, norm: f32, buf: &mut PassBuffer) {
+/// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
+/// (0 unless a memory budget split it), keeping their random streams apart.
+pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, tile: u64, norm: f32, buf: &mut PassBuffer) {
     let total = scene.settings.forward_rays;
     let chunk = chunk_size(total);
     let chunks = total.div_ceil(chunk);
@@ -38,7 +40,7 @@ pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, norm: f3
             .into_par_iter()
             .map(|c| {
                 let mut part = PassBuffer::new(buf.pixels, buf.n);
-                let mut rng = rng::stream(seed, pass, Domain::Light, c);
+                let mut rng = rng::stream(seed, pass, Domain::Light, (tile << 40) | c);
                 let rays = chunk.min(total - c * chunk);
                 let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
                 let mut tracer = ForwardTracer { scene, long, gather, norm, buf: &mut part };

@@ -10,4 +10,4 @@ pub mod rng;
 pub mod volume;
 
 pub use memory::MemoryEstimate;
-pub use pass::{Budget, Renderer, Stats, radius_for_pass};
+pub use pass::{Budget, Renderer, Stats, gather_budget, radius_for_pass};

@@ -28,6 +28,25 @@ pub struct Stats {
     pub camera_seconds: f64,
     pub build_seconds: f64,
     pub light_seconds: f64,
+    /// Gather tiles traced (more than one per pass when the memory budget splits passes).
+    pub tiles: u64,
+}
+
+/// The gather memory budget in bytes: the setting, or a quarter of the machine's memory.
+pub fn gather_budget(setting: u64) -> usize {
+    if setting > 0 {
+        return setting as usize;
+    }
+    let total = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|m| {
+            m.lines()
+                .find(|l| l.starts_with("MemTotal:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+        })
+        .map(|kib| kib * 1024)
+        .unwrap_or(8 << 30);
+    (total / 4) as usize
 }
 
 pub struct Renderer<'a> {
@@ -73,35 +92,45 @@ impl<'a> Renderer<'a> {
         self.radius
     }
 
-    /// Renders pass number `self.film.passes` and adds it to the film.
+    /// Renders pass number `self.film.passes` and adds it to the film. When the gather records
+    /// of the whole image would exceed `integrator.max_gather_bytes`, the pass is split into
+    /// tiles of rows, each with its own gather structure and light pass.
     pub fn render_pass(&mut self) {
         let scene = self.scene;
         let pass = self.film.passes;
         self.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, pass);
-        let t0 = Instant::now();
-        let mut out = camera_pass(scene, self.seed, pass);
-        let t1 = Instant::now();
-        let surfaces = std::mem::take(&mut out.surfaces);
-        let volumes = std::mem::take(&mut out.volumes);
-        let weights = std::mem::take(&mut out.weights);
-        self.stats.surface_records += surfaces.len() as u64;
-        self.stats.volume_records += volumes.len() as u64;
-        let gather = Gather::new(self.radius, surfaces, volumes, weights);
-        self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
-        let t2 = Instant::now();
         let (w, h) = scene.camera.resolution();
         let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
         let spp = scene.settings.camera_samples as f32;
         let norm = 1.0 / (scene.settings.forward_rays as f32 * spp);
-        light_pass(scene, &gather, self.seed, pass, norm, &mut buf);
-        splat_direct(&out, &mut buf, 1.0 / spp);
-        let t3 = Instant::now();
+        let budget = gather_budget(scene.settings.max_gather_bytes);
+        let mut row = 0;
+        let mut tile = 0u64;
+        while row < h {
+            let t0 = Instant::now();
+            let (mut out, next) = camera_pass(scene, self.seed, pass, row, budget);
+            let t1 = Instant::now();
+            let surfaces = std::mem::take(&mut out.surfaces);
+            let volumes = std::mem::take(&mut out.volumes);
+            let weights = std::mem::take(&mut out.weights);
+            self.stats.surface_records += surfaces.len() as u64;
+            self.stats.volume_records += volumes.len() as u64;
+            let gather = Gather::new(self.radius, surfaces, volumes, weights);
+            self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
+            let t2 = Instant::now();
+            light_pass(scene, &gather, self.seed, pass, tile, norm, &mut buf);
+            splat_direct(&out, &mut buf, 1.0 / spp);
+            let t3 = Instant::now();
+            self.stats.camera_paths += out.paths;
+            self.stats.forward_rays += scene.settings.forward_rays;
+            self.stats.camera_seconds += (t1 - t0).as_secs_f64();
+            self.stats.build_seconds += (t2 - t1).as_secs_f64();
+            self.stats.light_seconds += (t3 - t2).as_secs_f64();
+            self.stats.tiles += 1;
+            row = next;
+            tile += 1;
+        }
         self.film.add_pass(&buf);
-        self.stats.camera_paths += out.paths;
-        self.stats.forward_rays += scene.settings.forward_rays;
-        self.stats.camera_seconds += (t1 - t0).as_secs_f64();
-        self.stats.build_seconds += (t2 - t1).as_secs_f64();
-        self.stats.light_seconds += (t3 - t2).as_secs_f64();
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.
