@@ -22,7 +22,7 @@ fn fail(msg: String) -> ! {
 fn main() {
     let mut outs = Vec::new();
     let mut opts = OutputOptions::default();
-    let mut bins = 16;
+    let mut bins = SpectralGrid::default().n;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut val = || {

@@ -85,3 +85,8 @@ def test_rec709_to_acescg_matches_ocio(brume):
     m = brume_json("spectrum", "--matrices")
     brume_m = np.asarray(m["xyz_d65_to_acescg_bradford"]) @ np.linalg.inv(m["xyz_to_srgb"])
     np.testing.assert_allclose(brume_m, ocio_m, atol=2e-4, rtol=0)
+
+
+def test_default_bin_count_is_the_chosen_one(brume):
+    d = brume_json("spectrum", "colorchecker:1", "--illuminant", "D65")
+    assert d["bins"] == DEFAULT_BINS and (d["lambda_min"], d["lambda_max"]) == (380, 780)

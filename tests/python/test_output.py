@@ -130,3 +130,19 @@ def test_spectral_layers_names_and_values(brume, chart_bin, tmp_path):
         # The example's noise layer is 5% of the value, bin by bin.
         assert abs(ch["noise." + name][8, 8] - 0.05 * ch[name][8, 8]) < 1e-6
     assert "noise" in ch  # the RGB standard error (OpenEXR groups noise.R/G/B as "noise")
+
+
+def test_colour_science_reads_the_spectral_layout(brume, chart_bin, tmp_path):
+    # colour-science's reader of the Fichet et al. layout (via OpenImageIO) must find exactly
+    # the emissive S0 bins (not the noise layer's), at the bin centres, with the same values.
+    from colour.io import read_spectral_image_Fichet2021
+
+    exr, _ = chart(chart_bin, tmp_path, "cs", "--spectral", "--noise")
+    comps, spec = read_spectral_image_Fichet2021(str(exr), additional_data=True)
+    assert spec.is_emissive and not spec.is_polarised and not spec.is_bispectral
+    assert list(comps) == ["S0"]
+    wl, cube = comps["S0"]
+    np.testing.assert_allclose(wl, 380 + 12.5 + 25.0 * np.arange(BINS))
+    _, ch = read_exr(exr)
+    for i, c in enumerate(wl):
+        np.testing.assert_array_equal(cube[..., i], ch[channel(c)])

@@ -19,7 +19,14 @@ pub fn spectral_channel_name(centre: f64) -> String {
 
 fn samples(values: Vec<f32>, half: bool) -> FlatSamples {
     if half {
-        FlatSamples::F16(values.into_iter().map(f16::from_f32).collect())
+        // Clamp to the largest finite half (as pbrt does) rather than turn bright pixels into inf.
+        let max = f16::MAX.to_f32();
+        FlatSamples::F16(
+            values
+                .into_iter()
+                .map(|v| f16::from_f32(v.clamp(-max, max)))
+                .collect(),
+        )
     } else {
         FlatSamples::F32(values)
     }
