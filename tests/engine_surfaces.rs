@@ -53,7 +53,9 @@ spectrum = 1.0
     let grid = SpectralGrid::new(8, 380.0, 780.0);
     let rho = power_law(0.5, 550.0, 1.0, &grid);
     let e_per_nm = 2.0 / 400.0;
-    let expected: Vec<f64> = (0..8).map(|b| rho[b] as f64 * e_per_nm * theta.cos() / PI).collect();
+    let expected: Vec<f64> = (0..8)
+        .map(|b| rho[b] as f64 * e_per_nm * theta.cos() / PI)
+        .collect();
     let (mean, se) = independent_estimates(&scene, 6, 2, (0, 24, 0, 24));
     assert_bins("lambert", &mean, &se, &expected, Z, 0.0);
 }
@@ -106,7 +108,13 @@ spectrum = 1.0
             / m as f64
     };
     let deficit = |r: f64| {
-        let s = scene(text, &[&format!("integrator.radius={r}"), "integrator.forward_rays=400000"]);
+        let s = scene(
+            text,
+            &[
+                &format!("integrator.radius={r}"),
+                "integrator.forward_rays=400000",
+            ],
+        );
         let img = render(&s, 7, 16);
         let inner = region_mean(&img, &img.data, 0, 10, 0, 4)[0];
         let edge = region_mean(&img, &img.data, 20, 30, 0, 4)[0];
@@ -194,31 +202,43 @@ fn point_light_above_plane_and_progressive_radius() {
     };
     let exact = expected(0.0);
     let blurred = expected(0.15);
-    eprintln!("exact {exact:.6e}, blurred by R=0.15 {blurred:.6e} ({:.2}% low)", 100.0 * (1.0 - blurred / exact));
+    eprintln!(
+        "exact {exact:.6e}, blurred by R=0.15 {blurred:.6e} ({:.2}% low)",
+        100.0 * (1.0 - blurred / exact)
+    );
 
     // Fixed small radius: unbiased up to a tiny blur.
     let s = scene(&point_light_scene(0.01, 1.0), &[]);
     let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
     let small = expected(0.01);
-    assert_bins("point R=0.01", &mean, &se, &vec![small; 4], Z, 0.0);
+    assert_bins("point R=0.01", &mean, &se, &[small; 4], Z, 0.0);
 
     // Fixed large radius: the estimate matches the blurred value, not the exact one.
     let s = scene(&point_light_scene(0.15, 1.0), &[]);
     let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
-    assert_bins("point R=0.15 blurred", &mean, &se, &vec![blurred; 4], Z, 0.0);
+    assert_bins("point R=0.15 blurred", &mean, &se, &[blurred; 4], Z, 0.0);
     let z_exact = (mean[0] - exact) / se[0];
-    assert!(z_exact < -6.0, "a large fixed radius must be measurably biased (z = {z_exact})");
+    assert!(
+        z_exact < -6.0,
+        "a large fixed radius must be measurably biased (z = {z_exact})"
+    );
 
     // Progressive reduction from the same radius (alpha = 0.3): R^2 after p passes is about
     // p^-0.7 of the start, and the blur bias (second order in R) falls with it; averaged over
     // 100 passes the expected bias is about 0.15 of the fixed-radius one.
-    let s = scene(&point_light_scene(0.15, 0.3), &["integrator.forward_rays=20000"]);
+    let s = scene(
+        &point_light_scene(0.15, 0.3),
+        &["integrator.forward_rays=20000"],
+    );
     let img = render(&s, 3, 100);
     let prog = region_mean(&img, &img.data, 0, 8, 0, 8)[0];
     let bias_fixed = exact - blurred;
     let bias_prog = exact - prog;
     eprintln!("bias fixed {bias_fixed:.3e}, progressive {bias_prog:.3e}");
-    assert!(bias_prog.abs() < 0.5 * bias_fixed, "progressive radius must shrink the bias");
+    assert!(
+        bias_prog.abs() < 0.5 * bias_fixed,
+        "progressive radius must shrink the bias"
+    );
 }
 
 /// A parallel beam turned down by a 45-degree mirror onto a floor: the forward rays pass the
@@ -265,7 +285,7 @@ spectrum = 1.0
     let s = scene(text, &[]);
     let expected = 0.6 * 0.9 * (4.0 / 400.0) / PI;
     let (mean, se) = independent_estimates(&s, 6, 2, (0, 8, 0, 8));
-    assert_bins("caustic", &mean, &se, &vec![expected; 4], Z, 0.0);
+    assert_bins("caustic", &mean, &se, &[expected; 4], Z, 0.0);
 }
 
 /// The same seed renders the same bits with 1 and 2 threads.
@@ -274,15 +294,23 @@ fn deterministic_across_thread_counts() {
     let text = point_light_scene(0.05, 0.7);
     let s = scene(&text, &["integrator.forward_rays=30000"]);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
         pool.install(|| render(&s, 42, 3))
     };
     let a = run(1);
     let b = run(2);
-    let bits = |img: &brume::film::SpectralImage| img.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let bits =
+        |img: &brume::film::SpectralImage| img.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&a), bits(&b));
     let c = pool_other_seed(&s);
-    assert_ne!(bits(&a), bits(&c), "a different seed must give a different image");
+    assert_ne!(
+        bits(&a),
+        bits(&c),
+        "a different seed must give a different image"
+    );
 }
 
 fn pool_other_seed(s: &brume::scene::Scene) -> brume::film::SpectralImage {

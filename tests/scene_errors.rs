@@ -33,7 +33,10 @@ fn fails(text: &str, sets: &[&str]) -> SceneError {
 /// The error points into the file at `line` and names `key`.
 fn assert_at(e: &SceneError, line: usize, key: &str) {
     let text = e.to_string();
-    assert!(text.starts_with(&format!("scenes/test.toml:{line}:")), "{text}");
+    assert!(
+        text.starts_with(&format!("scenes/test.toml:{line}:")),
+        "{text}"
+    );
     assert_eq!(e.key(), Some(key), "{text}");
 }
 
@@ -80,14 +83,20 @@ fn out_of_range_q_is_rejected_with_its_line() {
 
 #[test]
 fn missing_texture_names_key() {
-    let e = fails(&GOOD.replace("albedo = 0.4", "texture = \"no-such-file.png\""), &[]);
+    let e = fails(
+        &GOOD.replace("albedo = 0.4", "texture = \"no-such-file.png\""),
+        &[],
+    );
     assert_at(&e, 11, "materials.wall.texture");
     assert!(e.to_string().contains("no-such-file.png"));
 }
 
 #[test]
 fn dangling_material_reference() {
-    let e = fails(&GOOD.replace("material = \"wall\"", "material = \"stone\""), &[]);
+    let e = fails(
+        &GOOD.replace("material = \"wall\"", "material = \"stone\""),
+        &[],
+    );
     assert_at(&e, 16, "shapes.0.material");
 }
 
@@ -96,15 +105,30 @@ fn set_overrides_and_validates() {
     let s = load_str(
         GOOD,
         Path::new("scenes/test.toml"),
-        &["integrator.q=0.1".into(), "camera.width=32".into(), "integrator.volume=\"cylinder\"".into()],
+        &[
+            "integrator.q=0.1".into(),
+            "camera.width=32".into(),
+            "integrator.volume=\"cylinder\"".into(),
+        ],
     )
     .expect("valid overrides");
     assert_eq!(s.desc.integrator.q, 0.1);
     assert_eq!(s.desc.camera.width, 32);
-    assert_eq!(s.desc.integrator.volume, brume::scene::desc::VolumeKind::Cylinder);
+    assert_eq!(
+        s.desc.integrator.volume,
+        brume::scene::desc::VolumeKind::Cylinder
+    );
     // Bare strings work too.
-    let s = load_str(GOOD, Path::new("scenes/test.toml"), &["integrator.mode=see-through".into()]).expect("bare string");
-    assert_eq!(s.desc.integrator.mode, brume::scene::desc::GatherMode::SeeThrough);
+    let s = load_str(
+        GOOD,
+        Path::new("scenes/test.toml"),
+        &["integrator.mode=see-through".into()],
+    )
+    .expect("bare string");
+    assert_eq!(
+        s.desc.integrator.mode,
+        brume::scene::desc::GatherMode::SeeThrough
+    );
 }
 
 #[test]
@@ -117,13 +141,22 @@ fn set_with_unknown_path_fails_naming_the_assignment() {
     ] {
         let e = fails(GOOD, &[set]);
         match &e {
-            SceneError::Invalid { origin: Origin::Set(a), .. } => assert_eq!(a, set),
+            SceneError::Invalid {
+                origin: Origin::Set(a),
+                ..
+            } => assert_eq!(a, set),
             other => panic!("{set}: wrong error {other:?}"),
         }
         assert_eq!(e.key(), Some(key), "{e}");
     }
-    assert!(matches!(fails(GOOD, &["novalue"]), SceneError::BadAssignment { .. }));
-    assert!(matches!(fails(GOOD, &["shapes.7.size=[1,1]"]), SceneError::BadAssignment { .. }));
+    assert!(matches!(
+        fails(GOOD, &["novalue"]),
+        SceneError::BadAssignment { .. }
+    ));
+    assert!(matches!(
+        fails(GOOD, &["shapes.7.size=[1,1]"]),
+        SceneError::BadAssignment { .. }
+    ));
 }
 
 #[test]

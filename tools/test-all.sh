@@ -22,7 +22,4 @@ echo "== cargo test"
 cargo test
 
 echo "== python reference checks"
-cargo build --bins --examples
-export BRUME_BIN="$PWD/target/debug/brume"
-export BRUME_COLOUR_CHART="$PWD/target/debug/examples/colour_chart"
-.venv/bin/python -m pytest tests/python -q
+PROFILE=dev bash tools/python-checks.sh

@@ -13,7 +13,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let loaded = brume::scene::load(&args.scene.scene, &args.scene.sets)?;
     let outputs = output_paths(args, &loaded)?;
     if let Some(t) = args.time {
-        anyhow::ensure!(t.is_finite() && t > 0.0, "--time must be a positive number of seconds");
+        anyhow::ensure!(
+            t.is_finite() && t > 0.0,
+            "--time must be a positive number of seconds"
+        );
     }
     if args.passes == Some(0) {
         anyhow::bail!("--passes must be at least 1");
@@ -47,7 +50,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             progress.set(shown, &format!("{done} passes"));
         });
         progress.finish();
-        Ok((renderer.image(), renderer.film().passes, renderer.film().dropped))
+        Ok((
+            renderer.image(),
+            renderer.film().passes,
+            renderer.film().dropped,
+        ))
     })?;
     let (image, passes, dropped) = image;
     let opts = loaded.desc.film.output_options();
@@ -58,14 +65,25 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         eprintln!(
             "brume: {passes} passes in {:.2} s{}; wrote {}",
             start.elapsed().as_secs_f64(),
-            if dropped > 0 { format!(", {dropped} non-finite samples dropped") } else { String::new() },
-            outputs.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+            if dropped > 0 {
+                format!(", {dropped} non-finite samples dropped")
+            } else {
+                String::new()
+            },
+            outputs
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     Ok(ExitCode::SUCCESS)
 }
 
-fn output_paths(args: &RenderArgs, scene: &brume::scene::LoadedScene) -> anyhow::Result<Vec<PathBuf>> {
+fn output_paths(
+    args: &RenderArgs,
+    scene: &brume::scene::LoadedScene,
+) -> anyhow::Result<Vec<PathBuf>> {
     let paths: Vec<PathBuf> = if !args.outputs.is_empty() {
         args.outputs.clone()
     } else if !scene.desc.film.outputs.is_empty() {
@@ -77,12 +95,19 @@ fn output_paths(args: &RenderArgs, scene: &brume::scene::LoadedScene) -> anyhow:
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "render".into());
-        vec![PathBuf::from(format!("{stem}.exr")), PathBuf::from(format!("{stem}.png"))]
+        vec![
+            PathBuf::from(format!("{stem}.exr")),
+            PathBuf::from(format!("{stem}.png")),
+        ]
     };
     for p in &paths {
         output::format_of(p)?;
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            anyhow::ensure!(dir.is_dir(), "{}: output folder does not exist", dir.display());
+            anyhow::ensure!(
+                dir.is_dir(),
+                "{}: output folder does not exist",
+                dir.display()
+            );
         }
     }
     Ok(paths)

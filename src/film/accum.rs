@@ -121,8 +121,14 @@ impl Film {
         }
         img.noise = Some(noise);
         img.layers = vec![
-            ("medium".into(), sum_m.iter().map(|v| (v / p) as f32).collect()),
-            ("surface".into(), sum_s.iter().map(|v| (v / p) as f32).collect()),
+            (
+                "medium".into(),
+                sum_m.iter().map(|v| (v / p) as f32).collect(),
+            ),
+            (
+                "surface".into(),
+                sum_s.iter().map(|v| (v / p) as f32).collect(),
+            ),
         ];
         img
     }

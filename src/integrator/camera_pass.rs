@@ -64,7 +64,13 @@ pub const ROW_BATCH: u32 = 8;
 /// Runs the camera pass of pass `pass` from row `first_row` on, until the gather records would
 /// exceed `budget_bytes` (at least one batch of rows). Rows are independent work items merged in
 /// row order. Returns the output and the first row not traced.
-pub fn camera_pass(scene: &Scene, seed: u64, pass: u64, first_row: u32, budget_bytes: usize) -> (CameraOutput, u32) {
+pub fn camera_pass(
+    scene: &Scene,
+    seed: u64,
+    pass: u64,
+    first_row: u32,
+    budget_bytes: usize,
+) -> (CameraOutput, u32) {
     let (w, h) = scene.camera.resolution();
     let mut all = CameraOutput::default();
     let mut row = first_row;
@@ -122,6 +128,19 @@ struct CameraPath<'a> {
     sees_emitters: bool,
 }
 
+/// Null-boundary crossings allowed per path (far more than any sane scene needs).
+pub const MAX_CROSSINGS: u32 = 1024;
+
+/// What a surface hit did to a path.
+enum Bounce {
+    /// The path ended (gathered, absorbed, or no continuation).
+    Stop,
+    /// Passed an index-matched boundary.
+    Crossed,
+    /// Reflected or refracted: a real event.
+    Scattered,
+}
+
 enum Segment {
     /// The path goes on to the surface at the end of the segment.
     Reached,
@@ -147,7 +166,10 @@ impl<'a> CameraPath<'a> {
     fn trace(mut self, mut ray: Ray, rng: &mut Rng, out: &mut CameraOutput) {
         let scene = self.scene;
         let mut medium = scene.camera_medium;
-        for depth in 0..scene.settings.max_depth {
+        // Null (index-matched) boundaries are not scattering events: they do not count towards
+        // max_depth, but are bounded on their own against degenerate geometry.
+        let (mut depth, mut crossings) = (0, 0);
+        while depth < scene.settings.max_depth && crossings < MAX_CROSSINGS {
             let hit = scene.geometry.intersect(&ray, f32::INFINITY);
             if let Some(m) = medium {
                 let seg_len = match &hit {
@@ -162,8 +184,13 @@ impl<'a> CameraPath<'a> {
                         // that the volumes already gathered (method note 6).
                         self.sees_emitters = false;
                         let p = ray.o + ray.d * s;
-                        let d = scene.media[m as usize].phase.sample_dir(ray.d, rng.random(), rng.random());
+                        let d = scene.media[m as usize].phase.sample_dir(
+                            ray.d,
+                            rng.random(),
+                            rng.random(),
+                        );
                         ray = Ray { o: p, d };
+                        depth += 1;
                         if !self.roulette(depth, rng) {
                             return;
                         }
@@ -172,11 +199,15 @@ impl<'a> CameraPath<'a> {
                 }
             }
             let Some(hit) = hit else { return };
-            if !self.surface(&hit, &mut ray, &mut medium, rng, out) {
-                return;
-            }
-            if !self.roulette(depth, rng) {
-                return;
+            match self.surface(&hit, &mut ray, &mut medium, rng, out) {
+                Bounce::Stop => return,
+                Bounce::Crossed => crossings += 1,
+                Bounce::Scattered => {
+                    depth += 1;
+                    if !self.roulette(depth, rng) {
+                        return;
+                    }
+                }
             }
         }
     }
@@ -195,7 +226,7 @@ impl<'a> CameraPath<'a> {
     }
 
     /// Handles a surface hit: emission, null boundaries, gathering on the diffuse part,
-    /// continuation through the non-diffuse part. Returns whether the path goes on.
+    /// continuation through the non-diffuse part.
     fn surface(
         &mut self,
         hit: &Hit,
@@ -203,28 +234,32 @@ impl<'a> CameraPath<'a> {
         medium: &mut Option<u32>,
         rng: &mut Rng,
         out: &mut CameraOutput,
-    ) -> bool {
+    ) -> Bounce {
         let scene = self.scene;
         let wo = -ray.d;
         let shape = scene.geometry.shape(hit.shape);
-        if let Some(l) = shape.light {
-            if self.sees_emitters {
-                let le = scene.lights.lights()[l as usize].radiance(hit, wo);
-                if !le.is_zero() {
-                    out.direct.push((self.pixel, le * self.w));
-                }
+        if let Some(l) = shape.light
+            && self.sees_emitters
+        {
+            let le = scene.lights.lights()[l as usize].radiance(hit, wo);
+            if !le.is_zero() {
+                out.direct.push((self.pixel, le * self.w));
             }
         }
         let Some(mat_id) = shape.material else {
             // Index-matched boundary: straight on, only the medium changes.
             *medium = scene.geometry.medium_after(hit, ray.d);
             *ray = spawn(hit.p, hit.ng, ray.d);
-            return true;
+            return Bounce::Crossed;
         };
         let material = &scene.materials[mat_id as usize];
         let pd = material.diffuse_probability(wo, hit);
         if pd > 0.0 && rng.random::<f32>() < pd {
-            let n = if hit.ns.dot(wo) >= 0.0 { hit.ns } else { -hit.ns };
+            let n = if hit.ns.dot(wo) >= 0.0 {
+                hit.ns
+            } else {
+                -hit.ns
+            };
             let weight = out.push_weight(&(self.w * (1.0 / pd)), self.n);
             out.surfaces.push(SurfaceRecord {
                 p: hit.p,
@@ -236,21 +271,21 @@ impl<'a> CameraPath<'a> {
                 uv: hit.uv,
                 weight,
             });
-            return false;
+            return Bounce::Stop;
         }
         let u = Vec3::new(rng.random(), rng.random(), rng.random());
         let Some(s) = material.sample_nondiffuse(wo, hit, u) else {
-            return false;
+            return Bounce::Stop;
         };
         self.w *= s.weight * (1.0 / (1.0 - pd));
         if self.w.is_zero() {
-            return false;
+            return Bounce::Stop;
         }
         if s.wi.dot(hit.ng).signum() != wo.dot(hit.ng).signum() {
             *medium = scene.geometry.medium_after(hit, s.wi);
         }
         *ray = spawn(hit.p, hit.ng, s.wi);
-        true
+        Bounce::Scattered
     }
 
     fn mixture(&self, m: u32) -> Mixture {
@@ -259,10 +294,26 @@ impl<'a> CameraPath<'a> {
             ChannelPickDesc::Throughput => ChannelPick::Throughput,
             ChannelPickDesc::Uniform => ChannelPick::Uniform,
         };
-        Mixture::new(pick, &self.w, &self.scene.media[m as usize], s.channel_floor)
+        Mixture::new(
+            pick,
+            &self.w,
+            &self.scene.media[m as usize],
+            s.channel_floor,
+        )
     }
 
-    fn volume(&self, out: &mut CameraOutput, start: Vec3, dir: Vec3, len: f32, m: u32, shape: VolumeShape, w: &Spectrum, extra: Option<&Spectrum>) {
+    /// Leaves an integration volume of `shape` on the camera ray in medium `m`, starting at
+    /// `start` and `len` long (0 for spheres), with spectral weight `w` (and `extra` weights).
+    fn volume(
+        &self,
+        out: &mut CameraOutput,
+        m: u32,
+        ray: &Ray,
+        (start, len, shape): (Vec3, f32, VolumeShape),
+        w: &Spectrum,
+        extra: Option<&Spectrum>,
+    ) {
+        let dir = ray.d;
         let weight = out.push_weight(w, self.n);
         if let Some(e) = extra {
             out.push_weight(e, self.n);
@@ -284,7 +335,14 @@ impl<'a> CameraPath<'a> {
     }
 
     /// One straight camera segment of length `seg_len` inside medium `m` (method notes 2-5).
-    fn medium_segment(&mut self, m: u32, ray: &Ray, seg_len: f32, rng: &mut Rng, out: &mut CameraOutput) -> Segment {
+    fn medium_segment(
+        &mut self,
+        m: u32,
+        ray: &Ray,
+        seg_len: f32,
+        rng: &mut Rng,
+        out: &mut CameraOutput,
+    ) -> Segment {
         let scene = self.scene;
         let med = &scene.media[m as usize];
         let settings = &scene.settings;
@@ -302,14 +360,19 @@ impl<'a> CameraPath<'a> {
                 let this = &*self;
                 let end = scene.walk.walk(med, &mix, seg_len, rng, |s, w| {
                     let w = this.w * *w;
-                    this.volume(out, ray.o + ray.d * s, ray.d, 0.0, m, VolumeShape::Sphere, &w, None);
+                    let place = (ray.o + ray.d * s, 0.0, VolumeShape::Sphere);
+                    this.volume(out, m, ray, place, &w, None);
                 });
                 self.after_walk(end, first_extinction)
             }
             VolumeKind::Cylinder | VolumeKind::CylinderLong => {
-                let shape = if settings.volume == VolumeKind::Cylinder { VolumeShape::Cylinder } else { VolumeShape::Long };
+                let shape = if settings.volume == VolumeKind::Cylinder {
+                    VolumeShape::Cylinder
+                } else {
+                    VolumeShape::Long
+                };
                 let w = self.w;
-                self.volume(out, ray.o, ray.d, seg_len, m, shape, &w, None);
+                self.volume(out, m, ray, (ray.o, seg_len, shape), &w, None);
                 if first_extinction {
                     self.w *= med.sigma_t.transmittance(seg_len, self.n);
                     Segment::Reached
@@ -324,7 +387,8 @@ impl<'a> CameraPath<'a> {
                     WalkEnd::Transmitted { .. } => seg_len,
                 };
                 let w = self.w;
-                self.volume(out, ray.o, ray.d, len, m, VolumeShape::Truncated, &w, Some(mix.probabilities()));
+                let place = (ray.o, len, VolumeShape::Truncated);
+                self.volume(out, m, ray, place, &w, Some(mix.probabilities()));
                 self.after_walk(end, first_extinction)
             }
         }

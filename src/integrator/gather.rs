@@ -58,8 +58,7 @@ impl Gather {
             .map(|s| Aabb::new(Vec3A::from(s.p) - r, Vec3A::from(s.p) + r))
             .collect();
         let v_aabbs: Vec<Aabb> = volumes.iter().map(|v| volume_aabb(v, radius)).collect();
-        let (surface_bvh, volume_bvh) =
-            rayon::join(|| build_bvh(&s_aabbs), || build_bvh(&v_aabbs));
+        let (surface_bvh, volume_bvh) = rayon::join(|| build_bvh(&s_aabbs), || build_bvh(&v_aabbs));
         Self {
             radius,
             surfaces,

@@ -8,6 +8,7 @@ use glam::Vec3;
 use rand::Rng as _;
 use rayon::prelude::*;
 
+use super::camera_pass::MAX_CROSSINGS;
 use super::gather::Gather;
 use super::record::{CLASS_C, CLASS_D, VolumeRecord, VolumeShape};
 use super::rng::{self, Domain, Rng};
@@ -27,7 +28,15 @@ pub fn chunk_size(total: u64) -> u64 {
 
 /// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
 /// (0 unless a memory budget split it), keeping their random streams apart.
-pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, tile: u64, norm: f32, buf: &mut PassBuffer) {
+pub fn light_pass(
+    scene: &Scene,
+    gather: &Gather,
+    seed: u64,
+    pass: u64,
+    tile: u64,
+    norm: f32,
+    buf: &mut PassBuffer,
+) {
     let total = scene.settings.forward_rays;
     let chunk = chunk_size(total);
     let chunks = total.div_ceil(chunk);
@@ -43,7 +52,13 @@ pub fn light_pass(scene: &Scene, gather: &Gather, seed: u64, pass: u64, tile: u6
                 let mut rng = rng::stream(seed, pass, Domain::Light, (tile << 40) | c);
                 let rays = chunk.min(total - c * chunk);
                 let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
-                let mut tracer = ForwardTracer { scene, long, gather, norm, buf: &mut part };
+                let mut tracer = ForwardTracer {
+                    scene,
+                    long,
+                    gather,
+                    norm,
+                    buf: &mut part,
+                };
                 for _ in 0..rays {
                     tracer.trace(&mut rng);
                 }
@@ -69,17 +84,26 @@ struct ForwardTracer<'a> {
 impl ForwardTracer<'_> {
     fn trace(&mut self, rng: &mut Rng) {
         let scene = self.scene;
-        let u = [rng.random(), rng.random(), rng.random(), rng.random(), rng.random()];
-        let Some(es) = scene.lights.sample(&scene.geometry, u) else { return };
+        let u = [
+            rng.random(),
+            rng.random(),
+            rng.random(),
+            rng.random(),
+            rng.random(),
+        ];
+        let Some(es) = scene.lights.sample(&scene.geometry, u) else {
+            return;
+        };
         let mut ray = es.ray;
         let mut flux = es.flux;
         let flux0 = flux.max_value();
-        if !(flux0 > 0.0) || !flux.is_finite() {
+        if flux0.is_nan() || flux0 <= 0.0 || !flux.is_finite() {
             return;
         }
         let mut class = CLASS_C;
         let mut medium = scene.medium_at(ray.o);
-        for depth in 0..scene.settings.max_depth {
+        let (mut depth, mut crossings) = (0, 0);
+        while depth < scene.settings.max_depth && crossings < MAX_CROSSINGS {
             let hit = scene.geometry.intersect(&ray, f32::INFINITY);
             if let Some(m) = medium {
                 let seg_len = match &hit {
@@ -87,15 +111,17 @@ impl ForwardTracer<'_> {
                     None => scene.world_exit(&ray),
                 };
                 let med = &scene.media[m as usize];
-                let flight = ForwardFlight::sample(med, &flux, scene.settings.channel_floor, seg_len, rng);
+                let flight =
+                    ForwardFlight::sample(med, &flux, scene.settings.channel_floor, seg_len, rng);
                 // Paper eq. 3 integrates the forward attenuation deterministically: it needs the
                 // whole segment, not the sampled flight.
                 let reach = if self.long { seg_len } else { flight.end() };
-                self.gather_volumes(m, class, &ray, reach, &flux, &flight);
+                self.gather_volumes(Some(m), class, &ray, reach, &flux, Some(&flight));
                 match flight.finish(med, &mut flux, 0.0, rng) {
                     FlightEnd::Escaped => {}
                     FlightEnd::Killed { .. } => return,
                     FlightEnd::Scattered { t } => {
+                        depth += 1;
                         if !self.roulette(&mut flux, flux0, depth, rng) {
                             return;
                         }
@@ -106,11 +132,18 @@ impl ForwardTracer<'_> {
                     }
                 }
             }
+            if medium.is_none() && scene.open_media {
+                // Integration volumes poking out of index-matched boundaries still see the
+                // forward rays that pass their outside part (method note 8).
+                let len = hit.as_ref().map_or_else(|| scene.world_exit(&ray), |h| h.t);
+                self.gather_volumes(None, class, &ray, len, &flux, None);
+            }
             let Some(hit) = hit else { return };
             let shape = scene.geometry.shape(hit.shape);
             let Some(mat_id) = shape.material else {
                 medium = scene.geometry.medium_after(&hit, ray.d);
                 ray = spawn(hit.p, hit.ng, ray.d);
+                crossings += 1;
                 continue;
             };
             let material = &scene.materials[mat_id as usize];
@@ -119,7 +152,9 @@ impl ForwardTracer<'_> {
                 self.gather_surfaces(&hit, ray.d, &flux);
             }
             let u = Vec3::new(rng.random(), rng.random(), rng.random());
-            let Some(s) = material.sample(wo, &hit, u) else { return };
+            let Some(s) = material.sample(wo, &hit, u) else {
+                return;
+            };
             if s.kind == LobeKind::Diffuse {
                 class = CLASS_D;
             }
@@ -128,6 +163,7 @@ impl ForwardTracer<'_> {
                 medium = scene.geometry.medium_after(&hit, s.wi);
             }
             ray = spawn(hit.p, hit.ng, s.wi);
+            depth += 1;
             if !self.roulette(&mut flux, flux0, depth, rng) {
                 return;
             }
@@ -139,7 +175,7 @@ impl ForwardTracer<'_> {
             return flux.max_value() > 0.0;
         }
         let p = (flux.max_value() / flux0).min(1.0);
-        if !(p > 0.0) || rng.random::<f32>() >= p {
+        if p.is_nan() || p <= 0.0 || rng.random::<f32>() >= p {
             return false;
         }
         *flux *= 1.0 / p;
@@ -151,14 +187,25 @@ impl ForwardTracer<'_> {
         let n = scene.grid.n;
         let gather = self.gather;
         let wi = -v;
-        let ng = if hit.ng.dot(wi) >= 0.0 { hit.ng } else { -hit.ng };
+        let ng = if hit.ng.dot(wi) >= 0.0 {
+            hit.ng
+        } else {
+            -hit.ng
+        };
         let inv_area = 1.0 / (PI * gather.radius * gather.radius);
         gather.surfaces_at(hit.p, |rec| {
             // Same side of the same surface as the camera path's hit.
             if rec.n.dot(wi) <= 0.0 || rec.n.dot(ng) < 0.5 {
                 return;
             }
-            let at = Hit { t: 0.0, p: rec.p, ng: rec.n, ns: rec.n, uv: rec.uv, shape: rec.shape };
+            let at = Hit {
+                t: 0.0,
+                p: rec.p,
+                ng: rec.n,
+                ns: rec.n,
+                uv: rec.uv,
+                shape: rec.shape,
+            };
             let f = scene.materials[rec.material as usize].eval_diffuse(rec.wo, wi, &at);
             let factor = f * *flux * inv_area;
             let w = gather.weight(rec.weight, n);
@@ -170,34 +217,66 @@ impl ForwardTracer<'_> {
         });
     }
 
-    fn gather_volumes(&mut self, m: u32, class: u8, ray: &Ray, len: f32, flux: &Spectrum, flight: &ForwardFlight) {
+    /// Gathers a forward segment in medium `m` (None: vacuum) into the volumes it meets.
+    /// Volumes of another medium count too when their medium is bounded only by index-matched
+    /// boundaries, across which the radiance field is continuous (method note 8).
+    fn gather_volumes(
+        &mut self,
+        m: Option<u32>,
+        class: u8,
+        ray: &Ray,
+        len: f32,
+        flux: &Spectrum,
+        flight: Option<&ForwardFlight>,
+    ) {
         let scene = self.scene;
         let n = scene.grid.n;
         let gather = self.gather;
         let radius = gather.radius;
-        let med = &scene.media[m as usize];
         let norm = self.norm;
         let buf = &mut *self.buf;
+        let seg_medium = m.map_or(u16::MAX, |m| m as u16);
         gather.volumes_along(ray.o, ray.d, len, |rec: &VolumeRecord| {
-            if rec.medium as u32 != m || rec.classes & class == 0 {
+            if rec.classes & class == 0 {
                 return;
             }
+            let same = rec.medium == seg_medium;
+            if !same && (rec.shape == VolumeShape::Long || !scene.open_medium(rec.medium as u32)) {
+                return;
+            }
+            // The record's own medium scatters the light towards the camera.
+            let med = &scene.media[rec.medium as usize];
+            let fwd = flight.map(|f| f.mixture());
             let f = med.phase.eval(-ray.d.dot(rec.dir));
             let factor: Spectrum = match rec.shape {
                 VolumeShape::Sphere => {
-                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, rec.start, radius) else { return };
-                    flight.flux_at(flux, chord.mid()) * (f * volume::track_length_density(&chord, radius))
+                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, rec.start, radius)
+                    else {
+                        return;
+                    };
+                    let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
+                    at * (f * volume::track_length_density(&chord, radius))
                 }
                 _ => {
-                    let axis = volume::CameraAxis { origin: rec.start, dir: rec.dir, len: rec.len };
-                    let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len) else { return };
-                    let k = match rec.shape {
-                        VolumeShape::Cylinder => volume::cylinder_eq2_fwd(med, flight.mixture(), &chord, radius),
-                        VolumeShape::Long => volume::long_eq3_exact(med, &chord, radius),
+                    let axis = volume::CameraAxis {
+                        origin: rec.start,
+                        dir: rec.dir,
+                        len: rec.len,
+                    };
+                    let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len)
+                    else {
+                        return;
+                    };
+                    let k = match (rec.shape, fwd) {
+                        (VolumeShape::Cylinder, Some(mix)) => {
+                            volume::cylinder_eq2_fwd(med, mix, &chord, radius)
+                        }
+                        (VolumeShape::Cylinder, None) => volume::cylinder_eq2(med, &chord, radius),
+                        (VolumeShape::Long, _) => volume::long_eq3_exact(med, &chord, radius),
                         _ => {
                             let p = Spectrum::from_slice(gather.weight(rec.weight + n as u32, n));
                             let cam = Mixture::from_probabilities(&p, med);
-                            volume::cylinder_truncated(med, &cam, Some(flight.mixture()), &chord, radius)
+                            volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
                         }
                     };
                     *flux * k * f

@@ -93,7 +93,12 @@ impl Mixture {
         let n = medium.n;
         let st = medium.sigma_t;
         let st_min = st.0[..n].iter().copied().fold(f32::INFINITY, f32::min);
-        Self { p: *p, st, st_min, n }
+        Self {
+            p: *p,
+            st,
+            st_min,
+            n,
+        }
     }
 
     /// The pick probabilities `P_l` (zero past the active bins).

@@ -5,12 +5,10 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::desc::{
-    LightKind, MaterialKind, ShapeKindDesc, SpectrumRef,
-};
+use super::LoadedScene;
+use super::desc::{LightKind, MaterialKind, ShapeKindDesc, SpectrumRef};
 use super::error::{KeyText, Origin, SceneError};
 use super::spectra::SpectrumResolver;
-use super::LoadedScene;
 use crate::camera::Camera;
 use crate::geometry::{self, Geometry, Ray, ShapeKind, Transform};
 use crate::light::{Light, LightSet};
@@ -31,6 +29,11 @@ pub struct Scene {
     pub camera_medium: Option<u32>,
     /// Medium outside every shape.
     pub outside_medium: Option<u32>,
+    /// Per medium: bounded only by index-matched (null) boundaries, so that its integration
+    /// volumes may gather forward rays outside it (method note 8).
+    pub open: Vec<bool>,
+    /// Whether any medium is open.
+    pub open_media: bool,
     /// The world box: paths that leave it end (media are taken to stop there).
     pub world_min: Vec3,
     pub world_max: Vec3,
@@ -61,8 +64,12 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
     let n = grid.n;
     let spectra = SpectrumResolver::new(scene, grid);
 
-    let media_ids: BTreeMap<&str, u32> =
-        d.media.keys().enumerate().map(|(i, k)| (k.as_str(), i as u32)).collect();
+    let media_ids: BTreeMap<&str, u32> = d
+        .media
+        .keys()
+        .enumerate()
+        .map(|(i, k)| (k.as_str(), i as u32))
+        .collect();
     let media = d
         .media
         .iter()
@@ -70,12 +77,17 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             let key = format!("media.{name}");
             let ss = spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
             let sa = spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
-            HomogeneousMedium::new(&ss, &sa, m.g, n).map_err(|e| err(scene, key.clone(), e.to_string()))
+            HomogeneousMedium::new(&ss, &sa, m.g, n)
+                .map_err(|e| err(scene, key.clone(), e.to_string()))
         })
         .collect::<Result<Vec<_>, SceneError>>()?;
 
-    let material_ids: BTreeMap<&str, u32> =
-        d.materials.keys().enumerate().map(|(i, k)| (k.as_str(), i as u32)).collect();
+    let material_ids: BTreeMap<&str, u32> = d
+        .materials
+        .keys()
+        .enumerate()
+        .map(|(i, k)| (k.as_str(), i as u32))
+        .collect();
     let materials = d
         .materials
         .iter()
@@ -128,14 +140,22 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         let kind = match s.kind {
             ShapeKindDesc::Quad => {
                 let v = s.size.clone().unwrap_or_default();
-                ShapeKind::Quad { size: Vec2::new(v[0], v[1]) }
+                ShapeKind::Quad {
+                    size: Vec2::new(v[0], v[1]),
+                }
             }
             ShapeKindDesc::Box => {
                 let v = s.size.clone().unwrap_or_default();
-                ShapeKind::Box { size: Vec3::new(v[0], v[1], v[2]) }
+                ShapeKind::Box {
+                    size: Vec3::new(v[0], v[1], v[2]),
+                }
             }
-            ShapeKindDesc::Sphere => ShapeKind::Sphere { radius: s.radius.unwrap_or(1.0) },
-            ShapeKindDesc::Disc => ShapeKind::Disc { radius: s.radius.unwrap_or(1.0) },
+            ShapeKindDesc::Sphere => ShapeKind::Sphere {
+                radius: s.radius.unwrap_or(1.0),
+            },
+            ShapeKindDesc::Disc => ShapeKind::Disc {
+                radius: s.radius.unwrap_or(1.0),
+            },
             ShapeKindDesc::Mesh => {
                 let file = s.file.clone().unwrap_or_default();
                 geometry::load_obj(&scene.resolve(&file))
@@ -154,8 +174,14 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         shapes.push(geometry::ShapeDesc {
             kind,
             transform: Transform::new(v3(t.translate), v3(t.rotate), v3(t.scale)),
-            material: s.material.as_deref().and_then(|m| material_ids.get(m).copied()),
-            interior: s.interior.as_deref().and_then(|m| media_ids.get(m).copied()),
+            material: s
+                .material
+                .as_deref()
+                .and_then(|m| material_ids.get(m).copied()),
+            interior: s
+                .interior
+                .as_deref()
+                .and_then(|m| media_ids.get(m).copied()),
             exterior: match &s.exterior {
                 Some(m) => media_ids.get(m.as_str()).copied(),
                 None => outside,
@@ -163,6 +189,19 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             light,
         });
     }
+    let mut open = vec![true; media.len()];
+    for s in &shapes {
+        if s.material.is_some() {
+            for m in [s.interior, s.exterior].into_iter().flatten() {
+                open[m as usize] = false;
+            }
+        }
+    }
+    if let Some(m) = outside {
+        // A medium filling all space has no outside to gather from.
+        open[m as usize] = false;
+    }
+    let open_media = open.iter().any(|&o| o);
     let geometry = Geometry::new(shapes).map_err(|e| err(scene, "shapes".into(), e.to_string()))?;
 
     let mut lights: Vec<Light> = area_lights
@@ -178,16 +217,29 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         // Normalise the shape so that its integral over the spectral range is 1 (per nm).
         let integral = shape.sum() as f64 * grid.width();
         if integral <= 0.0 {
-            return Err(err(scene, format!("{key}.spectrum"), "the spectrum is zero over the film's range".into()));
+            return Err(err(
+                scene,
+                format!("{key}.spectrum"),
+                "the spectrum is zero over the film's range".into(),
+            ));
         }
         let unit = shape * (1.0 / integral as f32);
         let pos = l.position.map(v3).unwrap_or(Vec3::ZERO);
-        let dir = l.direction.map(|d| v3(d).normalize()).unwrap_or(Vec3::NEG_Y);
+        let dir = l
+            .direction
+            .map(|d| v3(d).normalize())
+            .unwrap_or(Vec3::NEG_Y);
         let power = unit * l.power.unwrap_or(0.0);
         lights.push(match l.kind {
             LightKind::Directional => Light::directional(dir, unit * l.irradiance.unwrap_or(0.0)),
             LightKind::Point => Light::point(pos, power),
-            LightKind::Spot => Light::spot(pos, dir, power, l.angle.unwrap_or(30.0), l.soft_edge.unwrap_or(0.0)),
+            LightKind::Spot => Light::spot(
+                pos,
+                dir,
+                power,
+                l.angle.unwrap_or(30.0),
+                l.soft_edge.unwrap_or(0.0),
+            ),
             LightKind::Laser => Light::laser(pos, dir, l.radius.unwrap_or(1e-3), power),
         });
     }
@@ -196,11 +248,22 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
     let c = &d.camera;
     let camera = match c.projection {
         Projection::Orthographic => Camera::orthographic(
-            c.width, c.height, v3(c.position), v3(c.look_at), v3(c.up), c.view_width, c.view_height,
+            c.width,
+            c.height,
+            v3(c.position),
+            v3(c.look_at),
+            v3(c.up),
+            c.view_width,
+            c.view_height,
         ),
-        Projection::Perspective => {
-            Camera::perspective(c.width, c.height, v3(c.position), v3(c.look_at), v3(c.up), c.fov)
-        }
+        Projection::Perspective => Camera::perspective(
+            c.width,
+            c.height,
+            v3(c.position),
+            v3(c.look_at),
+            v3(c.up),
+            c.fov,
+        ),
     };
     let b = geometry.bounds();
     let (mut world_min, mut world_max) = (b.min.min(v3(c.position)), b.max.max(v3(c.position)));
@@ -216,11 +279,14 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         media,
         lights,
         camera_medium: outside,
+        open,
+        open_media,
         outside_medium: outside,
         world_min,
         world_max,
         settings: d.integrator.clone(),
-        walk: MultiSphereWalk::new(d.integrator.q).map_err(|e| err(scene, "integrator.q".into(), e.to_string()))?,
+        walk: MultiSphereWalk::new(d.integrator.q)
+            .map_err(|e| err(scene, "integrator.q".into(), e.to_string()))?,
         desc: d.clone(),
     };
     scene_out.camera_medium = scene_out.medium_at(v3(c.position));
@@ -236,10 +302,18 @@ impl Scene {
         match self.geometry.intersect(&Ray { o: p, d }, f32::INFINITY) {
             Some(h) => {
                 let shape = self.geometry.shape(h.shape);
-                if d.dot(h.ng) > 0.0 { shape.interior } else { shape.exterior }
+                if d.dot(h.ng) > 0.0 {
+                    shape.interior
+                } else {
+                    shape.exterior
+                }
             }
             None => self.outside_medium,
         }
+    }
+
+    pub fn open_medium(&self, m: u32) -> bool {
+        self.open.get(m as usize).copied().unwrap_or(false)
     }
 
     /// Distance along `ray` to the world box's far side (0 if it starts outside and misses).

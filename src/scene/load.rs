@@ -84,7 +84,8 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
         }
     };
 
-    let de = toml::Deserializer::parse(text).map_err(|e| in_file(String::new(), e.message().to_string(), e.span()))?;
+    let de = toml::Deserializer::parse(text)
+        .map_err(|e| in_file(String::new(), e.message().to_string(), e.span()))?;
     let mut desc: SceneDesc = serde_path_to_error::deserialize(de).map_err(|e| {
         let key = clean_path(&e.path().to_string());
         let inner = e.into_inner();
@@ -124,26 +125,40 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
 /// serde_path_to_error writes "?" for unknown positions and "." at the root.
 fn clean_path(p: &str) -> String {
     let p = p.trim_matches('.');
-    if p == "?" { String::new() } else { p.replace("[", ".").replace("]", "") }
+    if p == "?" {
+        String::new()
+    } else {
+        p.replace("[", ".").replace("]", "")
+    }
 }
 
 fn apply_assignments(desc: SceneDesc, sets: &[Assignment]) -> Result<SceneDesc, SceneError> {
     let internal = |message: String| SceneError::BadAssignment {
-        assignment: sets.iter().map(|a| a.text.as_str()).collect::<Vec<_>>().join(" "),
+        assignment: sets
+            .iter()
+            .map(|a| a.text.as_str())
+            .collect::<Vec<_>>()
+            .join(" "),
         message,
     };
     let mut root = toml::Value::try_from(&desc).map_err(|e| internal(e.to_string()))?;
     for a in sets {
-        set_path(&mut root, &a.path, a.value.clone()).map_err(|message| SceneError::BadAssignment {
-            assignment: a.text.clone(),
-            message,
+        set_path(&mut root, &a.path, a.value.clone()).map_err(|message| {
+            SceneError::BadAssignment {
+                assignment: a.text.clone(),
+                message,
+            }
         })?;
         // Check each assignment on its own so the error names the one at fault.
         if let Err(e) = serde_path_to_error::deserialize::<_, SceneDesc>(root.clone()) {
             let key = clean_path(&e.path().to_string());
             return Err(SceneError::Invalid {
                 origin: Origin::Set(a.text.clone()),
-                key: KeyText(if key.is_empty() { path::display(&a.path) } else { key }),
+                key: KeyText(if key.is_empty() {
+                    path::display(&a.path)
+                } else {
+                    key
+                }),
                 message: e.into_inner().message().to_string(),
             });
         }

@@ -35,7 +35,12 @@ impl<'a> SpectrumResolver<'a> {
     }
 
     /// A reference whose RGB form means `kind`.
-    pub fn resolve(&self, r: &SpectrumRef, kind: RgbKind, key: &str) -> Result<Spectrum, SceneError> {
+    pub fn resolve(
+        &self,
+        r: &SpectrumRef,
+        kind: RgbKind,
+        key: &str,
+    ) -> Result<Spectrum, SceneError> {
         match r {
             SpectrumRef::Constant(v) => Ok(spectrum::constant(*v as f32, &self.grid)),
             SpectrumRef::Rgb(rgb) => self.rgb([rgb[0] as f32, rgb[1] as f32, rgb[2] as f32], kind),
@@ -46,18 +51,30 @@ impl<'a> SpectrumResolver<'a> {
         }
     }
 
-    fn file_or_builtin(&self, spec: &str, column: Option<&str>, key: &str) -> Result<Spectrum, SceneError> {
+    fn file_or_builtin(
+        &self,
+        spec: &str,
+        column: Option<&str>,
+        key: &str,
+    ) -> Result<Spectrum, SceneError> {
         // Relative files resolve from the scene's folder; built-in names are tried first.
-        let resolved = if spectrum::builtin_table(spec.split(':').next().unwrap_or(spec)).is_some() {
+        let resolved = if spectrum::builtin_table(spec.split(':').next().unwrap_or(spec)).is_some()
+        {
             spec.to_string()
         } else {
             self.scene.resolve(spec).to_string_lossy().into_owned()
         };
-        let data = spectrum::resolve(&resolved, column, false).map_err(|e| self.error(key, e.to_string()))?;
+        let data = spectrum::resolve(&resolved, column, false)
+            .map_err(|e| self.error(key, e.to_string()))?;
         Ok(data.bin_averages(&self.grid, Extrapolation::Clamp))
     }
 
-    fn named_spectrum(&self, name: &str, d: &SpectrumDesc, kind: RgbKind) -> Result<Spectrum, SceneError> {
+    fn named_spectrum(
+        &self,
+        name: &str,
+        d: &SpectrumDesc,
+        kind: RgbKind,
+    ) -> Result<Spectrum, SceneError> {
         let key = format!("spectra.{name}");
         let base = if let Some(f) = &d.file {
             self.file_or_builtin(f, d.column.as_deref(), &format!("{key}.file"))?
@@ -100,6 +117,7 @@ impl<'a> SpectrumResolver<'a> {
 
     /// Texel conversion for textures (sRGB-encoded values already decoded to linear).
     pub fn rgb_reflectance(&self, rgb: [f32; 3]) -> Spectrum {
-        self.rgb(rgb, RgbKind::Reflectance).unwrap_or(Spectrum::ZERO)
+        self.rgb(rgb, RgbKind::Reflectance)
+            .unwrap_or(Spectrum::ZERO)
     }
 }

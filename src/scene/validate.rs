@@ -1,8 +1,6 @@
 //! Range and reference checks on a scene description, before anything heavy is allocated.
 
-use super::desc::{
-    LightKind, MaterialKind, SceneDesc, ShapeKindDesc, SpectrumDesc, SpectrumRef,
-};
+use super::desc::{LightKind, MaterialKind, SceneDesc, ShapeKindDesc, SpectrumDesc, SpectrumRef};
 use super::load::LoadedScene;
 use crate::spectrum::MAX_BINS;
 
@@ -100,29 +98,45 @@ impl Checker<'_> {
                 key,
                 format!(
                     "give exactly one of file, builtin, value, rgb, power_law (found {})",
-                    if sources.is_empty() { "none".to_string() } else { sources.join(", ") }
+                    if sources.is_empty() {
+                        "none".to_string()
+                    } else {
+                        sources.join(", ")
+                    }
                 ),
             );
         }
         if let Some(f) = &s.file {
             self.file(&format!("{key}.file"), f);
         }
-        if let Some(b) = &s.builtin {
-            if !BUILTIN_SPECTRA.contains(&b.as_str()) {
-                self.fail(format!("{key}.builtin"), format!("unknown built-in spectrum `{b}`"));
-            }
+        if let Some(b) = &s.builtin
+            && !BUILTIN_SPECTRA.contains(&b.as_str())
+        {
+            self.fail(
+                format!("{key}.builtin"),
+                format!("unknown built-in spectrum `{b}`"),
+            );
         }
         if let Some(v) = s.value {
             self.non_negative(&format!("{key}.value"), v);
         }
-        if let Some(rgb) = s.rgb {
-            if rgb.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
-                self.fail(format!("{key}.rgb"), "RGB components must be finite and >= 0");
-            }
+        if let Some(rgb) = s.rgb
+            && rgb.iter().any(|c| !(c.is_finite() && *c >= 0.0))
+        {
+            self.fail(
+                format!("{key}.rgb"),
+                "RGB components must be finite and >= 0",
+            );
         }
         if let Some(p) = &s.power_law {
             self.non_negative(&format!("{key}.power_law.k"), p.k);
-            self.range(&format!("{key}.power_law.p"), p.p, -20.0, 20.0, "in [-20, 20]");
+            self.range(
+                &format!("{key}.power_law.p"),
+                p.p,
+                -20.0,
+                20.0,
+                "in [-20, 20]",
+            );
             self.positive(&format!("{key}.power_law.lambda_ref"), p.lambda_ref);
         }
         if let Some(sc) = s.scale {
@@ -130,12 +144,25 @@ impl Checker<'_> {
         }
     }
 
-    fn reference<T>(&mut self, key: &str, name: &str, map: &std::collections::BTreeMap<String, T>, what: &str) {
+    fn reference<T>(
+        &mut self,
+        key: &str,
+        name: &str,
+        map: &std::collections::BTreeMap<String, T>,
+        what: &str,
+    ) {
         if !map.contains_key(name) {
             let known: Vec<&str> = map.keys().map(String::as_str).collect();
             self.fail(
                 key,
-                format!("no {what} named `{name}` (defined: {})", if known.is_empty() { "none".into() } else { known.join(", ") }),
+                format!(
+                    "no {what} named `{name}` (defined: {})",
+                    if known.is_empty() {
+                        "none".into()
+                    } else {
+                        known.join(", ")
+                    }
+                ),
             );
         }
     }
@@ -150,17 +177,41 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
 
     let f = &d.film;
     if !(1..=MAX_BINS).contains(&f.bins) {
-        c.fail("film.bins", format!("must be in 1..={MAX_BINS}, got {}", f.bins));
+        c.fail(
+            "film.bins",
+            format!("must be in 1..={MAX_BINS}, got {}", f.bins),
+        );
     }
-    c.range("film.lambda_min", f.lambda_min, 200.0, 2000.0, "in [200, 2000] nm");
-    c.range("film.lambda_max", f.lambda_max, 200.0, 2000.0, "in [200, 2000] nm");
+    c.range(
+        "film.lambda_min",
+        f.lambda_min,
+        200.0,
+        2000.0,
+        "in [200, 2000] nm",
+    );
+    c.range(
+        "film.lambda_max",
+        f.lambda_max,
+        200.0,
+        2000.0,
+        "in [200, 2000] nm",
+    );
     if f.lambda_max <= f.lambda_min {
         c.fail("film.lambda_max", "must be greater than film.lambda_min");
     }
-    c.range("film.exposure", f.exposure as f64, -64.0, 64.0, "in [-64, 64] stops");
+    c.range(
+        "film.exposure",
+        f.exposure as f64,
+        -64.0,
+        64.0,
+        "in [-64, 64] stops",
+    );
     for (i, o) in f.outputs.iter().enumerate() {
         if crate::film::output::format_of(std::path::Path::new(o)).is_err() {
-            c.fail(format!("film.outputs.{i}"), format!("`{o}`: use a .exr or .png extension"));
+            c.fail(
+                format!("film.outputs.{i}"),
+                format!("`{o}`: use a .exr or .png extension"),
+            );
         }
     }
 
@@ -171,7 +222,10 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
         }
     }
     if cam.width as u64 * cam.height as u64 > MAX_PIXELS {
-        c.fail("camera.width", format!("the image has more than {MAX_PIXELS} pixels"));
+        c.fail(
+            "camera.width",
+            format!("the image has more than {MAX_PIXELS} pixels"),
+        );
     }
     c.vector("camera.position", cam.position);
     c.vector("camera.look_at", cam.look_at);
@@ -179,20 +233,32 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     if cam.position == cam.look_at {
         c.fail("camera.look_at", "must differ from camera.position");
     }
-    c.range("camera.fov", cam.fov as f64, 1e-3, 179.0, "in (0, 179] degrees");
+    c.range(
+        "camera.fov",
+        cam.fov as f64,
+        1e-3,
+        179.0,
+        "in (0, 179] degrees",
+    );
     c.positive("camera.view_width", cam.view_width as f64);
     c.positive("camera.view_height", cam.view_height as f64);
 
     let it = &d.integrator;
     c.positive("integrator.radius", it.radius as f64);
     if !(it.alpha > 0.0 && it.alpha <= 1.0) {
-        c.fail("integrator.alpha", format!("must be in (0, 1], got {}", it.alpha));
+        c.fail(
+            "integrator.alpha",
+            format!("must be in (0, 1], got {}", it.alpha),
+        );
     }
     if !(it.q > 0.0 && it.q <= 1.0) {
         c.fail("integrator.q", format!("must be in (0, 1], got {}", it.q));
     }
     if !(1..=1_000_000_000_000).contains(&it.forward_rays) {
-        c.fail("integrator.forward_rays", format!("must be in 1..=1e12, got {}", it.forward_rays));
+        c.fail(
+            "integrator.forward_rays",
+            format!("must be in 1..=1e12, got {}", it.forward_rays),
+        );
     }
     if !(1..=4096).contains(&it.camera_samples) {
         c.fail("integrator.camera_samples", "must be in 1..=4096");
@@ -226,7 +292,13 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
             }
         }
         if let Some(r) = m.roughness {
-            c.range(&format!("{key}.roughness"), r as f64, 1e-4, 1.0, "in [1e-4, 1]");
+            c.range(
+                &format!("{key}.roughness"),
+                r as f64,
+                1e-4,
+                1.0,
+                "in [1e-4, 1]",
+            );
         }
         match m.kind {
             MaterialKind::Lambert | MaterialKind::Glossy => {
@@ -248,7 +320,10 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
         c.spectrum_ref(&format!("{key}.sigma_s"), &m.sigma_s, d);
         c.spectrum_ref(&format!("{key}.sigma_a"), &m.sigma_a, d);
         if !(m.g.is_finite() && m.g.abs() < 1.0) {
-            c.fail(format!("{key}.g"), format!("must be in (-1, 1), got {}", m.g));
+            c.fail(
+                format!("{key}.g"),
+                format!("must be in (-1, 1), got {}", m.g),
+            );
         }
     }
     if let Some(m) = &d.medium {
@@ -269,8 +344,14 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
                         c.fail(format!("{key}.size"), "sizes must be finite and > 0");
                     }
                 }
-                Some(v) => c.fail(format!("{key}.size"), format!("needs {n} numbers, got {}", v.len())),
-                None => c.fail(&key, format!("a {:?} needs `size` ({n} numbers)", s.kind).to_lowercase()),
+                Some(v) => c.fail(
+                    format!("{key}.size"),
+                    format!("needs {n} numbers, got {}", v.len()),
+                ),
+                None => c.fail(
+                    &key,
+                    format!("a {:?} needs `size` ({n} numbers)", s.kind).to_lowercase(),
+                ),
             }
         }
         if matches!(s.kind, ShapeKindDesc::Sphere | ShapeKindDesc::Disc) {
@@ -301,7 +382,10 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
         c.vector(&format!("{key}.transform.translate"), t.translate);
         c.vector(&format!("{key}.transform.rotate"), t.rotate);
         if t.scale.iter().any(|x| !(x.is_finite() && *x != 0.0)) {
-            c.fail(format!("{key}.transform.scale"), "scale factors must be finite and non-zero");
+            c.fail(
+                format!("{key}.transform.scale"),
+                "scale factors must be finite and non-zero",
+            );
         }
     }
 
@@ -327,7 +411,10 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
                 None => c.fail(&key, needs("position")),
             }
         }
-        if matches!(l.kind, LightKind::Directional | LightKind::Spot | LightKind::Laser) {
+        if matches!(
+            l.kind,
+            LightKind::Directional | LightKind::Spot | LightKind::Laser
+        ) {
             match l.direction {
                 Some(v) => c.direction(&format!("{key}.direction"), v),
                 None => c.fail(&key, needs("direction")),
@@ -335,11 +422,23 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
         }
         if l.kind == LightKind::Spot {
             match l.angle {
-                Some(a) => c.range(&format!("{key}.angle"), a as f64, 1e-3, 90.0, "in (0, 90] degrees"),
+                Some(a) => c.range(
+                    &format!("{key}.angle"),
+                    a as f64,
+                    1e-3,
+                    90.0,
+                    "in (0, 90] degrees",
+                ),
                 None => c.fail(&key, needs("angle")),
             }
             if let Some(s) = l.soft_edge {
-                c.range(&format!("{key}.soft_edge"), s as f64, 0.0, 90.0, "in [0, 90] degrees");
+                c.range(
+                    &format!("{key}.soft_edge"),
+                    s as f64,
+                    0.0,
+                    90.0,
+                    "in [0, 90] degrees",
+                );
             }
         }
         if l.kind == LightKind::Laser {

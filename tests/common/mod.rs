@@ -21,7 +21,14 @@ pub fn render(scene: &Scene, seed: u64, passes: u32) -> SpectralImage {
 }
 
 /// Mean per bin over the pixel rectangle [x0, x1) x [y0, y1) of `data` (one of the image's layers).
-pub fn region_mean(img: &SpectralImage, data: &[f32], x0: usize, x1: usize, y0: usize, y1: usize) -> Vec<f64> {
+pub fn region_mean(
+    img: &SpectralImage,
+    data: &[f32],
+    x0: usize,
+    x1: usize,
+    y0: usize,
+    y1: usize,
+) -> Vec<f64> {
     let n = img.grid.n;
     let mut acc = vec![0.0f64; n];
     for y in y0..y1 {
@@ -47,7 +54,9 @@ pub fn independent_estimates(
     let mut samples: Vec<Vec<f64>> = Vec::new();
     for seed in 0..runs {
         let img = render(scene, 1000 + seed, passes);
-        samples.push(region_mean(&img, &img.data, region.0, region.1, region.2, region.3));
+        samples.push(region_mean(
+            &img, &img.data, region.0, region.1, region.2, region.3,
+        ));
     }
     mean_and_se(&samples, n)
 }
@@ -71,7 +80,10 @@ pub fn assert_bins(name: &str, mean: &[f64], se: &[f64], expected: &[f64], z: f6
     for b in 0..mean.len() {
         let tol = z * se[b] + rel_floor * expected[b].abs();
         let zs = (mean[b] - expected[b]) / se[b].max(1e-300);
-        eprintln!("{name} bin {b}: got {:.6e} expected {:.6e} se {:.2e} z {:.2}", mean[b], expected[b], se[b], zs);
+        eprintln!(
+            "{name} bin {b}: got {:.6e} expected {:.6e} se {:.2e} z {:.2}",
+            mean[b], expected[b], se[b], zs
+        );
         assert!(
             (mean[b] - expected[b]).abs() <= tol,
             "{name} bin {b}: {} vs {} (se {}, z {zs:.2})",
