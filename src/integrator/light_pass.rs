@@ -23,7 +23,7 @@ use crate::spectrum::Spectrum;
 /// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
 /// order (and so every bit of the image) does not depend on how many threads ran.
 pub fn chunk_size(total: u64) -> u64 {
-    (total / 256).clamp(4096, 1 << 20)
+    (total / 32).clamp(4096, 1 << 20)
 }
 
 /// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
@@ -246,6 +246,8 @@ impl ForwardTracer<'_> {
             }
             // The record's own medium scatters the light towards the camera.
             let med = &scene.media[rec.medium as usize];
+            // A grey flight's flux does not change along the segment: skip its survival weights.
+            let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
             let fwd = flight.map(|f| f.mixture());
             let f = med.phase.eval(-ray.d.dot(rec.dir));
             let factor: Spectrum = match rec.shape {

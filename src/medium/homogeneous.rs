@@ -18,6 +18,8 @@ pub struct HomogeneousMedium {
     pub phase: HenyeyGreenstein,
     /// Number of active spectral bins.
     pub n: usize,
+    /// All active bins share one sigma_t: per-bin exponentials are then all the same number.
+    pub grey: bool,
 }
 
 impl HomogeneousMedium {
@@ -44,12 +46,15 @@ impl HomogeneousMedium {
         let mut sa = Spectrum::ZERO;
         ss.0[..n].copy_from_slice(&sigma_s.0[..n]);
         sa.0[..n].copy_from_slice(&sigma_a.0[..n]);
+        let st = ss + sa;
+        let grey = st.0[..n].iter().all(|&x| x == st.0[0]);
         Ok(Self {
             sigma_s: ss,
             sigma_a: sa,
-            sigma_t: ss + sa,
+            sigma_t: st,
             phase,
             n,
+            grey,
         })
     }
 

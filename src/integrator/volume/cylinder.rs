@@ -133,8 +133,11 @@ pub fn eq2_factor(st: f32, chord: &CylinderChord) -> f32 {
 /// that does not depend on position); see `cylinder_eq2_fwd` for colour forward flights.
 #[inline]
 pub fn cylinder_eq2(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -> Spectrum {
-    let mut out = Spectrum::ZERO;
     let k = 1.0 / (PI * r * r);
+    if medium.grey {
+        return medium.sigma_s * (k * eq2_factor(medium.sigma_t.0[0], chord));
+    }
+    let mut out = Spectrum::ZERO;
     for l in 0..medium.n {
         out.0[l] = medium.sigma_s.0[l] * k * eq2_factor(medium.sigma_t.0[l], chord);
     }

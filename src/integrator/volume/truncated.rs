@@ -50,6 +50,10 @@ pub fn cylinder_eq2_fwd(
     chord: &CylinderChord,
     r: f32,
 ) -> Spectrum {
+    if fwd.sigma_t_span() == 0.0 {
+        // Grey forward flight: its flux is constant along the chord, eq. 2's closed form is exact.
+        return super::cylinder_eq2(medium, chord, r);
+    }
     let k = 1.0 / (PI * r * r);
     let c = chord.len();
     let st_max = medium.sigma_t.max_value();
