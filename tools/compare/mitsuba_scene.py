@@ -35,7 +35,8 @@ def _texture(mi, path: Path, albedo: float):
     from PIL import Image
 
     rgb = np.asarray(Image.open(path).convert("RGB"), dtype=np.float32) / 255.0
-    lin = (_srgb_to_linear(rgb) * albedo).astype(np.float32)
+    # brume's v = 0 is the image's bottom row; Mitsuba's bitmap puts v = 0 at the top row.
+    lin = np.ascontiguousarray(np.flipud(_srgb_to_linear(rgb) * albedo), dtype=np.float32)
     return mi.Bitmap(lin, pixel_format=mi.Bitmap.PixelFormat.RGB)
 
 
