@@ -45,12 +45,14 @@ def read_rgb(path: Path) -> np.ndarray:
         return np.stack([np.asarray(ch[c].pixels, dtype=np.float64) for c in "RGB"], axis=-1)
 
 
-def brume_render(brume: str, scene: Path, seconds: float, seed: int, out: Path) -> tuple[np.ndarray, float]:
+def brume_render(
+    brume: str, scene: Path, seconds: float, seed: int, out: Path, sets: list[str] = ()
+) -> tuple[np.ndarray, float]:
+    cmd = [brume, "render", str(scene), "--time", str(seconds), "--seed", str(seed), "-o", str(out), "--quiet"]
+    for s in sets:
+        cmd += ["--set", s]
     t0 = time.perf_counter()
-    subprocess.run(
-        [brume, "render", str(scene), "--time", str(seconds), "--seed", str(seed), "-o", str(out), "--quiet"],
-        check=True,
-    )
+    subprocess.run(cmd, check=True)
     return read_rgb(out), time.perf_counter() - t0
 
 
@@ -90,6 +92,7 @@ def main() -> None:
     ap.add_argument("--chunk-spp", type=int, default=4)
     ap.add_argument("--ref-seconds", type=float, default=120.0)
     ap.add_argument("--times", type=float, nargs="+", default=[2, 5, 15, 60])
+    ap.add_argument("--brume-set", action="append", default=[], help="brume --set override for the ladder (the reference keeps the scene's settings: only for settings that leave the expected image unchanged, e.g. integrator.q)")
     ap.add_argument("--out", type=Path, required=True, help="prefix of the CSV, plot and JSON")
     a = ap.parse_args()
     a.out.parent.mkdir(parents=True, exist_ok=True)
@@ -130,7 +133,7 @@ def main() -> None:
 
     rows = []
     for i, t in enumerate(a.times):
-        img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr")
+        img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", a.brume_set)
         rows.append(("brume", t, bt, "", rel_rmse(img, b_ref, bt, b_ref_t)))
         img, mt, spp = mit.render(t)
         rows.append(("mitsuba", t, mt, spp, rel_rmse(img, m_ref, mt, m_ref_t)))
