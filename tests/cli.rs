@@ -60,7 +60,7 @@ fn malformed_scene_fails_with_position_and_writes_nothing() {
     for (bad, key, line) in [
         (SCENE.replace("width = 8", "width = -8"), "camera.width", 4),
         (SCENE.replace("passes = 1", "passes = 1\nbogus = 3"), "integrator.bogus", 12),
-        (SCENE.replace("albedo = 0.5", "texture = \"missing.png\""), "materials.wall.texture", 15),
+        (SCENE.replace("albedo = 0.5", "texture = \"missing.png\""), "materials.wall.texture", 14),
     ] {
         let scene = write_scene(dir.path(), &bad);
         let exr = dir.path().join("bad.exr");
