@@ -46,10 +46,23 @@ fn renders_exr_and_png() {
     let out = brume()
         .arg("render")
         .arg(&scene)
-        .args(["-o", exr.to_str().unwrap(), "-o", png.to_str().unwrap(), "--passes", "2", "--seed", "3"])
+        .args([
+            "-o",
+            exr.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--passes",
+            "2",
+            "--seed",
+            "3",
+        ])
         .output()
         .expect("run brume");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(std::fs::metadata(&exr).expect("exr").len() > 0);
     assert!(std::fs::metadata(&png).expect("png").len() > 0);
 }
@@ -59,8 +72,16 @@ fn malformed_scene_fails_with_position_and_writes_nothing() {
     let dir = tempfile::tempdir().expect("tempdir");
     for (bad, key, line) in [
         (SCENE.replace("width = 8", "width = -8"), "camera.width", 4),
-        (SCENE.replace("passes = 1", "passes = 1\nbogus = 3"), "integrator.bogus", 12),
-        (SCENE.replace("albedo = 0.5", "texture = \"missing.png\""), "materials.wall.texture", 14),
+        (
+            SCENE.replace("passes = 1", "passes = 1\nbogus = 3"),
+            "integrator.bogus",
+            12,
+        ),
+        (
+            SCENE.replace("albedo = 0.5", "texture = \"missing.png\""),
+            "materials.wall.texture",
+            14,
+        ),
     ] {
         let scene = write_scene(dir.path(), &bad);
         let exr = dir.path().join("bad.exr");
@@ -97,7 +118,10 @@ fn unknown_set_path_fails() {
         .expect("run brume");
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--set integrator.nope=1") && err.contains("integrator.nope"), "{err}");
+    assert!(
+        err.contains("--set integrator.nope=1") && err.contains("integrator.nope"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -107,7 +131,12 @@ fn info_succeeds_on_every_shipped_scene() {
         let path = entry.expect("entry").path();
         if path.extension().is_some_and(|e| e == "toml") {
             let out = brume().arg("info").arg(&path).output().expect("run brume");
-            assert!(out.status.success(), "{}: {}", path.display(), String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{}: {}",
+                path.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
             assert!(String::from_utf8_lossy(&out.stdout).contains("integration volumes"));
         }
     }
@@ -115,9 +144,19 @@ fn info_succeeds_on_every_shipped_scene() {
 
 #[test]
 fn help_documents_every_flag() {
-    let out = brume().args(["render", "--help"]).output().expect("run brume");
+    let out = brume()
+        .args(["render", "--help"])
+        .output()
+        .expect("run brume");
     let text = String::from_utf8_lossy(&out.stdout);
-    for flag in ["--output", "--passes", "--time", "--seed", "--threads", "--set"] {
+    for flag in [
+        "--output",
+        "--passes",
+        "--time",
+        "--seed",
+        "--threads",
+        "--set",
+    ] {
         assert!(text.contains(flag), "render --help lacks {flag}");
     }
 }

@@ -128,12 +128,18 @@ fn all_volumes_match_analytic_single_scattering() {
         for pick in ["throughput", "uniform"] {
             cases.push((
                 format!("spheres q={q} {pick}"),
-                vec![format!("integrator.q={q}"), format!("integrator.channel_pick={pick}")],
+                vec![
+                    format!("integrator.q={q}"),
+                    format!("integrator.channel_pick={pick}"),
+                ],
             ));
         }
     }
     for volume in ["cylinder", "cylinder-truncated", "cylinder-long"] {
-        cases.push((volume.to_string(), vec![format!("integrator.volume={volume}")]));
+        cases.push((
+            volume.to_string(),
+            vec![format!("integrator.volume={volume}")],
+        ));
     }
     for (name, sets) in cases {
         let mut sets: Vec<&str> = sets.iter().map(String::as_str).collect();
@@ -361,7 +367,10 @@ fn memory_budget_splits_passes_into_tiles() {
     let s = scene(&fog_text(""), &[&sets[..], &[budget.as_str()]].concat());
     let mut r = Renderer::new(&s, 9);
     r.run(Budget::Passes(1), |_, _| {});
-    eprintln!("untiled peak {full} bytes; tiled: {} tiles, peak {} bytes", r.stats.tiles, r.stats.peak_gather_bytes);
+    eprintln!(
+        "untiled peak {full} bytes; tiled: {} tiles, peak {} bytes",
+        r.stats.tiles, r.stats.peak_gather_bytes
+    );
     assert_eq!(r.stats.tiles, 4, "32 rows in batches of 8");
     assert!(r.stats.peak_gather_bytes < full / 2);
     let (mean, se) = independent_estimates(&s, 5, 2, (0, 32, 0, 32));

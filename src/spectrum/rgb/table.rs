@@ -7,6 +7,9 @@ use rayon::prelude::*;
 use super::fit::FitContext;
 use super::sigmoid::SigmoidPolynomial;
 
+/// The table fitted ahead of time and shipped with brume (see [`CoefficientTable::srgb`]).
+static SHIPPED: &[u8] = include_bytes!("../../../spectra/srgb-coefficients.bin");
+
 /// Table resolution per axis.
 pub const RES: usize = 32;
 
@@ -27,18 +30,62 @@ fn index(l: usize, k: usize, j: usize, i: usize) -> usize {
 }
 
 impl CoefficientTable {
-    /// The shared sRGB table, computed on first use.
+    /// The shared sRGB table: the one shipped in `spectra/srgb-coefficients.bin` (written by
+    /// `cargo run --release --example make_rgb_table`), or fitted on first use if that file is
+    /// missing or malformed.
     pub fn srgb() -> Option<&'static CoefficientTable> {
         static TABLE: OnceLock<Option<CoefficientTable>> = OnceLock::new();
         TABLE
-            .get_or_init(|| FitContext::srgb().map(Self::compute))
+            .get_or_init(|| {
+                Self::from_bytes(SHIPPED).or_else(|| FitContext::srgb().map(Self::compute))
+            })
             .as_ref()
     }
 
-    pub fn compute(ctx: &FitContext) -> Self {
-        let z_scale: Vec<f64> = (0..RES)
+    fn z_scale() -> Vec<f64> {
+        (0..RES)
             .map(|k| smoothstep(smoothstep(k as f64 / (RES - 1) as f64)))
+            .collect()
+    }
+
+    /// The coefficients as little-endian f64, in index order (the shipped file's format).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.data
+            .iter()
+            .flat_map(|c| c.iter().flat_map(|v| v.to_le_bytes()))
+            .collect()
+    }
+
+    /// Reads [`Self::to_bytes`]'s format; None if the size is wrong or a value is not finite.
+    pub fn from_bytes(bytes: &[u8]) -> Option<Self> {
+        if bytes.len() != 3 * RES * RES * RES * 3 * 8 {
+            return None;
+        }
+        let values: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|b| f64::from_le_bytes(b.try_into().unwrap_or([0; 8])))
             .collect();
+        if values.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let data = values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        Some(Self {
+            z_scale: Self::z_scale(),
+            data,
+        })
+    }
+
+    /// Largest absolute difference between two tables' coefficients.
+    pub fn max_difference(&self, other: &Self) -> f64 {
+        self.data
+            .iter()
+            .zip(&other.data)
+            .flat_map(|(a, b)| (0..3).map(move |n| (a[n] - b[n]).abs()))
+            .fold(0.0, f64::max)
+    }
+
+    pub fn compute(ctx: &FitContext) -> Self {
+        let z_scale = Self::z_scale();
         let start_k = RES / 5;
         // One task per (largest component, x column); each walks y, and from a mid z outwards
         // in both directions, warm-starting every fit from its neighbour's solution.
