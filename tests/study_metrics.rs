@@ -4,7 +4,8 @@
 use brume::film::SpectralImage;
 use brume::spectrum::SpectralGrid;
 use brume::study::{
-    Reference, efficiency, expand, layer_errors, mean_noise, mse, parse_vary, rel_mse, rmse,
+    Reference, efficiency, expand, layer_errors, mean_error, mean_noise, mse, parse_vary, rel_mse,
+    rmse,
 };
 
 fn close(a: f64, b: f64) {
@@ -19,6 +20,8 @@ fn rmse_and_mse_of_known_images() {
     close(mse(&x, &r), 1.25);
     close(rmse(&x, &r), 1.25f64.sqrt());
     close(mse(&r, &r), 0.0);
+    // Signed: (0 + 1 - 2 + 0) / 4.
+    close(mean_error(&x, &r), -0.25);
     let e = layer_errors(&x, &r);
     close(e.mse, 1.25);
     close(e.rmse, 1.25f64.sqrt());

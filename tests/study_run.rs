@@ -101,7 +101,7 @@ fn tiny_study_end_to_end() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines[0], CSV_HEADER);
     let cols = CSV_HEADER.split(',').count();
-    assert_eq!(cols, 16);
+    assert_eq!(cols, 17);
     assert_eq!(lines.len(), rows.len() + 1);
     for l in &lines[1..] {
         assert_eq!(l.split(',').count(), cols, "row {l}");

@@ -199,12 +199,20 @@ fn image_of(r: &Reference) -> brume::film::SpectralImage {
 
 fn print_table(s: &study::Summary, dir: &Path) {
     println!(
-        "{:<32} {:>6} {:>7} {:>11} {:>11} {:>11} {:>11} {:>7}",
-        "variant", "passes", "secs", "MSE", "medium MSE", "surface MSE", "1/(MSE*t)", "gain"
+        "{:<32} {:>6} {:>7} {:>11} {:>11} {:>11} {:>11} {:>7} {:>11}",
+        "variant",
+        "passes",
+        "secs",
+        "MSE",
+        "medium MSE",
+        "surface MSE",
+        "1/(MSE*t)",
+        "gain",
+        "mean err"
     );
     for v in &s.variants {
         println!(
-            "{:<32} {:>6.1} {:>7.2} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} {:>7.3}",
+            "{:<32} {:>6.1} {:>7.2} {:>11.4e} {:>11.4e} {:>11.4e} {:>11.4e} {:>7.3} {:>11.3e}",
             v.label,
             v.mean_passes,
             v.mean_seconds,
@@ -212,7 +220,8 @@ fn print_table(s: &study::Summary, dir: &Path) {
             v.medium_mse,
             v.surface_mse,
             v.efficiency,
-            v.gain_vs_first
+            v.gain_vs_first,
+            v.mean_error
         );
     }
     println!(

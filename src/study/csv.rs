@@ -9,7 +9,7 @@ use super::variants::Variant;
 use super::{StudyError, io_err};
 
 pub const CSV_HEADER: &str = "variant,label,run,passes,seconds,mse,rmse,rel_mse,\
-medium_mse,medium_rmse,medium_rel_mse,surface_mse,surface_rmse,surface_rel_mse,noise,efficiency";
+medium_mse,medium_rmse,medium_rel_mse,surface_mse,surface_rmse,surface_rel_mse,noise,efficiency,mean_error";
 
 pub fn write_csv(path: &Path, variants: &[Variant], rows: &[Row]) -> Result<(), StudyError> {
     let mut s = String::with_capacity(200 * (rows.len() + 1));
@@ -22,7 +22,7 @@ pub fn write_csv(path: &Path, variants: &[Variant], rows: &[Row]) -> Result<(), 
             .map(|v| v.label.replace('"', "'"))
             .unwrap_or_default();
         s.push_str(&format!(
-            "{},\"{}\",{},{},{:.6},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            "{},\"{}\",{},{},{:.6},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
             r.variant,
             label,
             r.run,
@@ -39,6 +39,7 @@ pub fn write_csv(path: &Path, variants: &[Variant], rows: &[Row]) -> Result<(), 
             c.surface.rel_mse,
             c.noise,
             efficiency(c.total.mse, c.seconds),
+            c.mean_error,
         ));
     }
     let mut f = std::fs::File::create(path).map_err(|e| io_err(path, e))?;

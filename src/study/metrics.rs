@@ -15,6 +15,19 @@ pub fn mse(x: &[f32], reference: &[f32]) -> f64 {
     s / x.len() as f64
 }
 
+/// Mean signed difference (x - reference).
+pub fn mean_error(x: &[f32], reference: &[f32]) -> f64 {
+    if x.is_empty() {
+        return 0.0;
+    }
+    let s: f64 = x
+        .iter()
+        .zip(reference)
+        .map(|(&a, &r)| a as f64 - r as f64)
+        .sum();
+    s / x.len() as f64
+}
+
 pub fn rmse(x: &[f32], reference: &[f32]) -> f64 {
     mse(x, reference).sqrt()
 }

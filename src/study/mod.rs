@@ -12,7 +12,9 @@ mod summary;
 mod variants;
 
 pub use csv::{CSV_HEADER, write_csv};
-pub use metrics::{LayerErrors, efficiency, layer_errors, mean_noise, mse, rel_mse, rmse};
+pub use metrics::{
+    LayerErrors, efficiency, layer_errors, mean_error, mean_noise, mse, rel_mse, rmse,
+};
 pub use plot::{plot_efficiency, plot_error_vs_time};
 pub use reference::{REFERENCE_MAGIC, Reference};
 pub use run::{Checkpoint, Event, Row, StudyConfig, render_for, render_reference, run_study};

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use super::StudyError;
-use super::metrics::{LayerErrors, layer_errors, mean_noise};
+use super::metrics::{LayerErrors, layer_errors, mean_error, mean_noise};
 use super::reference::{Reference, layer};
 use super::variants::Variant;
 use crate::integrator::Renderer;
@@ -35,6 +35,9 @@ pub struct Checkpoint {
     pub surface: LayerErrors,
     /// Mean per-pixel standard error estimated from the run's own passes.
     pub noise: f64,
+    /// Mean signed error (image minus reference) over all values: a bias that persists
+    /// across runs shows here, where the MSE cannot tell it from noise.
+    pub mean_error: f64,
 }
 
 /// One CSV row: a variant's run at a checkpoint.
@@ -193,6 +196,7 @@ fn measure(r: &Renderer, seconds: f64, reference: &Reference) -> Result<Checkpoi
         medium: layer_errors(m, &reference.medium),
         surface: layer_errors(s, &reference.surface),
         noise: mean_noise(&img),
+        mean_error: mean_error(&img.data, &reference.total),
     })
 }
 

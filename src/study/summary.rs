@@ -24,6 +24,8 @@ pub struct VariantSummary {
     pub medium_rel_mse: f64,
     pub surface_rel_mse: f64,
     pub noise: f64,
+    /// Mean signed error (image minus reference) at the end of the runs.
+    pub mean_error: f64,
     pub efficiency: f64,
     pub medium_efficiency: f64,
     pub surface_efficiency: f64,
@@ -101,6 +103,7 @@ pub fn summarise_variants(
             medium_rel_mse: mean(&|r| r.checkpoint.medium.rel_mse),
             surface_rel_mse: mean(&|r| r.checkpoint.surface.rel_mse),
             noise: mean(&|r| r.checkpoint.noise),
+            mean_error: mean(&|r| r.checkpoint.mean_error),
             efficiency: efficiency(mse, seconds),
             medium_efficiency: efficiency(medium_mse, seconds),
             surface_efficiency: efficiency(surface_mse, seconds),
