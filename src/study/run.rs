@@ -24,6 +24,9 @@ pub struct StudyConfig {
     pub seed: u64,
 }
 
+/// Variants that could not be loaded or built: (index, message).
+pub type InvalidVariants = Vec<(usize, String)>;
+
 /// Errors after one pass of one run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Checkpoint {
@@ -100,7 +103,7 @@ pub fn run_study(
     cfg: &StudyConfig,
     reference: &Reference,
     mut progress: impl FnMut(Event),
-) -> Result<(Vec<Row>, Vec<(usize, String)>), StudyError> {
+) -> Result<(Vec<Row>, InvalidVariants), StudyError> {
     let mut rows = Vec::new();
     let mut invalid = Vec::new();
     for (vi, variant) in cfg.variants.iter().enumerate() {
@@ -209,11 +212,17 @@ pub fn render_reference(
     mut progress: impl FnMut(f64),
 ) -> Result<Reference, StudyError> {
     let mut out = None;
-    render_for(scene_file, sets, seconds, seed ^ 0x5EED_0F_BEEF, |r, t| {
-        progress(t);
-        if t >= seconds {
-            out = Some(Reference::from_image(&r.image(), r.film().passes, t));
-        }
-    })?;
+    render_for(
+        scene_file,
+        sets,
+        seconds,
+        seed ^ 0x005E_ED0F_BEEF,
+        |r, t| {
+            progress(t);
+            if t >= seconds {
+                out = Some(Reference::from_image(&r.image(), r.film().passes, t));
+            }
+        },
+    )?;
     out.ok_or_else(|| StudyError::NoVariant("reference rendered no pass".into()))
 }
