@@ -21,7 +21,9 @@ fn every_scene_builds_and_renders_tiny() {
         "colour-checker",
     ] {
         assert!(
-            files.iter().any(|f| f.file_stem().is_some_and(|s| s == want)),
+            files
+                .iter()
+                .any(|f| f.file_stem().is_some_and(|s| s == want)),
             "scenes/{want}.toml missing"
         );
     }
