@@ -3,6 +3,7 @@
 mod info;
 mod progress;
 mod render;
+mod study;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -27,6 +28,9 @@ pub enum Command {
     /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
     /// emission spectrum.
     Spectrum(brume::colour::cli::SpectrumArgs),
+    /// Render variants of a scene (`--vary KEY=V1,V2`) for equal time against a reference and
+    /// measure their error: CSV, JSON summary and plots.
+    Study(study::StudyArgs),
 }
 
 /// A scene file and overrides of its values.
@@ -70,6 +74,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Render(a) => render::run(&a),
         Command::Info(a) => info::run(&a),
+        Command::Study(a) => study::run(&a),
         Command::Spectrum(a) => {
             println!("{}", brume::colour::cli::run(&a)?);
             Ok(ExitCode::SUCCESS)

@@ -1,1 +1,49 @@
-//! study (see docs/architecture.md).
+//! `brume study`: renders variants of a scene (a cartesian product of `--set` overrides) for
+//! equal wall-clock time, several independent runs each, and measures their error against a
+//! reference image after every pass. The measured answer to "which integration volume and which
+//! q give the least noise for the time" (paper section 2.3; method note section 7).
+
+mod csv;
+mod metrics;
+mod plot;
+mod reference;
+mod run;
+mod summary;
+mod variants;
+
+pub use csv::{CSV_HEADER, write_csv};
+pub use metrics::{
+    LayerErrors, efficiency, layer_errors, mean_error, mean_noise, mse, rel_mse, rmse,
+};
+pub use plot::{plot_efficiency, plot_error_vs_time};
+pub use reference::{REFERENCE_MAGIC, Reference};
+pub use run::{Checkpoint, Event, Row, StudyConfig, render_for, render_reference, run_study};
+pub use summary::{Summary, VariantSummary, summarise, summarise_variants};
+pub use variants::{Variant, Vary, expand, parse_vary};
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    #[error("--vary {0:?}: expected KEY=V1,V2,... with at least one value")]
+    Vary(String),
+    #[error("{0}")]
+    Scene(#[from] crate::scene::SceneError),
+    #[error("{path}: {message}")]
+    Io { path: PathBuf, message: String },
+    #[error("{path}: not a brume reference ({message})")]
+    Reference { path: PathBuf, message: String },
+    #[error("reference is {got}, the study renders {want} (same size and bins needed)")]
+    Mismatch { got: String, want: String },
+    #[error("plot {path}: {message}")]
+    Plot { path: PathBuf, message: String },
+    #[error("no valid variant to study: {0}")]
+    NoVariant(String),
+}
+
+pub(crate) fn io_err(path: &std::path::Path, e: impl std::fmt::Display) -> StudyError {
+    StudyError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
+}
