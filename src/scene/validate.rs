@@ -11,8 +11,16 @@ pub struct Problem {
     pub message: String,
 }
 
-/// Names usable wherever a spectrum is expected without defining them in `[spectra]`.
-pub const BUILTIN_SPECTRA: &[&str] = &["D65", "D50", "A", "E", "F2", "F11", "LED"];
+/// Whether `name` is a built-in spectrum (`D65`, `colorchecker:dark_skin`, ...): its part before
+/// any `:column` names a built-in table.
+pub fn is_builtin(name: &str) -> bool {
+    let base = name.split(':').next().unwrap_or(name);
+    crate::spectrum::builtin_table(base).is_some()
+}
+
+fn builtin_list() -> String {
+    crate::spectrum::builtin_names().collect::<Vec<_>>().join(", ")
+}
 
 /// Largest image side and pixel count accepted (beyond this the film alone would exhaust memory).
 pub const MAX_SIDE: u32 = 32_768;
@@ -78,12 +86,16 @@ impl Checker<'_> {
                 }
             }
             SpectrumRef::Named(n) => {
-                if !desc.spectra.contains_key(n) && !BUILTIN_SPECTRA.contains(&n.as_str()) {
+                let file = n.split(':').next().unwrap_or(n);
+                if !desc.spectra.contains_key(n)
+                    && !is_builtin(n)
+                    && !self.scene.resolve(file).is_file()
+                {
                     self.fail(
                         key,
                         format!(
-                            "no spectrum named `{n}` in [spectra] and no built-in of that name (built-ins: {})",
-                            BUILTIN_SPECTRA.join(", ")
+                            "`{n}` is not a spectrum in [spectra], a built-in ({}), or a CSV file",
+                            builtin_list()
                         ),
                     );
                 }
@@ -106,11 +118,18 @@ impl Checker<'_> {
                 ),
             );
         }
-        if let Some(f) = &s.file {
-            self.file(&format!("{key}.file"), f);
+        if let Some(f) = &s.file
+            && !is_builtin(f)
+        {
+            // `file.csv:column` names a column of the file.
+            let path = match f.rsplit_once(':') {
+                Some((p, _)) if !self.scene.resolve(f).is_file() => p,
+                _ => f,
+            };
+            self.file(&format!("{key}.file"), path);
         }
         if let Some(b) = &s.builtin
-            && !BUILTIN_SPECTRA.contains(&b.as_str())
+            && !is_builtin(b)
         {
             self.fail(
                 format!("{key}.builtin"),
