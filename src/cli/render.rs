@@ -99,12 +99,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 Budget::Time(_) => (elapsed as u64).min(total),
             };
             progress.set(shown, &format!("{} passes", film.passes));
-            if let (Some(path), Some(every)) = (&args.checkpoint, every) {
-                if elapsed - last_save >= every {
-                    last_save = elapsed;
-                    if let Err(e) = checkpoint::write(path, film, &id) {
-                        eprintln!("brume: warning: checkpoint not saved: {e}");
-                    }
+            if let (Some(path), Some(every)) = (&args.checkpoint, every)
+                && elapsed - last_save >= every
+            {
+                last_save = elapsed;
+                if let Err(e) = checkpoint::write(path, film, &id) {
+                    eprintln!("brume: warning: checkpoint not saved: {e}");
                 }
             }
         });
@@ -258,7 +258,7 @@ fn output_paths(
         ]
     };
     for p in paths.iter().chain(&args.checkpoint) {
-        if !is_film_path(p) && !args.checkpoint.as_deref().is_some_and(|c| c == p) {
+        if !is_film_path(p) && args.checkpoint.as_deref().is_none_or(|c| c != p) {
             output::format_of(p)?;
         }
         check_folder(p)?;
