@@ -41,6 +41,8 @@ pub struct PassBuffer {
     pub n: usize,
     /// `[layer][pixel][bin]`.
     pub data: Vec<f32>,
+    /// Samples not added because a value was not finite (reaches `Film::dropped`).
+    pub dropped: u64,
 }
 
 impl PassBuffer {
@@ -49,6 +51,38 @@ impl PassBuffer {
             pixels,
             n,
             data: vec![0.0; LAYERS * pixels * n],
+            dropped: 0,
+        }
+    }
+
+    /// Adds the sample `w * f * scale` (per bin) to a pixel, unless some bin of it is not
+    /// finite: then the whole sample is dropped and counted, so one bad path cannot poison a
+    /// pixel (a NaN would otherwise erase every other sample of the pass in that slot).
+    #[inline]
+    pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
+        let finite = w
+            .iter()
+            .zip(f)
+            .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite());
+        if !finite {
+            self.dropped += 1;
+            return;
+        }
+        let slot = self.slot(layer, pixel);
+        for ((s, w), f) in slot.iter_mut().zip(w).zip(f) {
+            *s += w * f * scale;
+        }
+    }
+
+    /// Adds the sample `v * scale` to a pixel, or drops and counts it (see `splat`).
+    #[inline]
+    pub fn splat_scaled(&mut self, layer: Layer, pixel: usize, v: &[f32], scale: f32) {
+        if !v.iter().fold(true, |ok, x| ok & (x * scale).is_finite()) {
+            self.dropped += 1;
+            return;
+        }
+        for (s, x) in self.slot(layer, pixel).iter_mut().zip(v) {
+            *s += x * scale;
         }
     }
 
@@ -60,6 +94,7 @@ impl PassBuffer {
 
     /// Adds `other` elementwise; the order of calls fixes the floating-point result.
     pub fn add(&mut self, other: &PassBuffer) {
+        self.dropped += other.dropped;
         self.data
             .par_chunks_mut(1 << 14)
             .zip(other.data.par_chunks(1 << 14))
@@ -140,7 +175,7 @@ impl Film {
             let t = m + s;
             self.sum_sq[i] = self.sum_sq[i].wrapping_add(to_fixed(t * t, SQ_SCALE));
         }
-        self.dropped += dropped;
+        self.dropped += dropped + pass.dropped;
         self.passes += 1;
     }
 
@@ -278,6 +313,22 @@ mod tests {
         assert!(img.data.iter().all(|v| v.is_finite()));
         assert_eq!(img.data[1], 1.0);
         assert_eq!(img.data[2], 2.0);
+    }
+
+    #[test]
+    fn a_non_finite_sample_is_dropped_without_erasing_its_pixel() {
+        let mut b = PassBuffer::new(2, 2);
+        b.splat(Layer::Medium, 1, &[1.0, 2.0], &[3.0, 4.0], 0.5);
+        b.splat(Layer::Medium, 1, &[1.0, f32::NAN], &[3.0, 4.0], 0.5);
+        b.splat(Layer::Medium, 1, &[1e30, 1.0], &[1e30, 1.0], 1.0);
+        b.splat_scaled(Layer::Surface, 0, &[f32::INFINITY, 0.0], 1.0);
+        b.splat_scaled(Layer::Surface, 0, &[1.0, 2.0], 2.0);
+        assert_eq!(b.dropped, 3);
+        let mut f = Film::new(2, 1, grid());
+        f.add_pass(&b);
+        assert_eq!(f.dropped, 3);
+        let img = f.image();
+        assert_eq!(img.data, vec![2.0, 4.0, 1.5, 4.0]);
     }
 
     #[test]
