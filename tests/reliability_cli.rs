@@ -21,12 +21,11 @@ fn scene() -> PathBuf {
 }
 
 fn brume(dir: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_brume"))
+    Command::new(env!("CARGO_BIN_EXE_brume"))
         .current_dir(dir)
         .args(args)
         .output()
-        .expect("brume runs");
-    out
+        .expect("brume runs")
 }
 
 /// `brume render fog-cube SMALL... extra...`, asserting success.
@@ -201,7 +200,7 @@ fn sigint_keeps_completed_passes_and_they_resume_exactly() {
         .and_then(|r| r.split_whitespace().next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no pass count in: {err}"));
-    assert!(kept >= 1 && kept < 100000, "{err}");
+    assert!((1..100000).contains(&kept), "{err}");
     // The outputs are whole images of exactly the kept passes.
     let n = kept.to_string();
     render(d, &["--passes", &n, "-o", "s.exr", "-o", "s.png"]);
