@@ -1,6 +1,7 @@
 //! clap definitions of brume's subcommands and their dispatch.
 
 mod info;
+mod merge;
 mod progress;
 mod render;
 mod study;
@@ -23,6 +24,9 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene file to images (format by extension: .exr scene-linear, .png display sRGB).
     Render(RenderArgs),
+    /// Combine film part files (from `render --pass-range`) into the image of all their passes,
+    /// bit-identical to a single run (see docs/distributed.md).
+    Merge(MergeArgs),
     /// Validate a scene file and summarise it (counts, spectral bins, memory estimate).
     Info(SceneArgs),
     /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
@@ -68,11 +72,44 @@ pub struct RenderArgs {
     /// Print nothing but errors.
     #[arg(long, short = 'q')]
     pub quiet: bool,
+    /// Save the film state to FILE at the end (and on interrupt, and every
+    /// --checkpoint-every minutes), to continue later with --resume.
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// Minutes between periodic checkpoints (needs --checkpoint).
+    #[arg(long, value_name = "MINUTES", requires = "checkpoint")]
+    pub checkpoint_every: Option<f64>,
+    /// Continue the render saved in FILE (a checkpoint or part file) up to --passes in total;
+    /// the image is bit-identical to an uninterrupted run.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
+    /// Render only passes A..B (A inclusive, B exclusive) of the seed's sequence, for a
+    /// distributed render; write a film part file (`-o NAME.brume`) and combine the parts with
+    /// `brume merge`.
+    #[arg(long, value_name = "A..B", conflicts_with_all = ["time", "passes"])]
+    pub pass_range: Option<String>,
+    /// Render even when the memory estimate exceeds the machine's memory.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Film part files written by `brume render --pass-range` (any order).
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// Output file (.exr, .png, or .brume for a merged film file); repeatable.
+    #[arg(short = 'o', long = "output", value_name = "FILE", required = true)]
+    pub outputs: Vec<PathBuf>,
+    /// Print nothing but errors.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
 }
 
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Render(a) => render::run(&a),
+        Command::Merge(a) => merge::run(&a),
         Command::Info(a) => info::run(&a),
         Command::Study(a) => study::run(&a),
         Command::Spectrum(a) => {

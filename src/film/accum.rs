@@ -1,5 +1,12 @@
-//! Accumulation of pass estimates: running sums per pixel and bin (f64, so thousands of passes
-//! lose nothing), sums of squares for a noise estimate, and the component layers.
+//! Accumulation of pass estimates: running sums per pixel and bin, sums of squares for a noise
+//! estimate, and the component layers.
+//!
+//! The sums are fixed-point integers (`i128`), not floats: integer addition is associative, so
+//! the film of passes 0..N is bit-identical whether the passes were added in one run, resumed
+//! from a checkpoint, or rendered as slices on several machines and merged in any order
+//! (see docs/distributed.md). Wrapping addition keeps that property even when an intermediate
+//! sum overflows; only the final sums must fit, which they do for any finite image brume can
+//! produce (|total| < 2^63 in radiance units).
 
 use rayon::prelude::*;
 
@@ -18,6 +25,15 @@ pub enum Layer {
 
 pub const LAYERS: usize = 2;
 
+/// Fixed-point scale of the radiance sums: 2^64 units per radiance unit (resolution 5e-20,
+/// finer than the f32 pass estimates near any visible value).
+pub const SUM_SCALE: f64 = 18_446_744_073_709_551_616.0;
+/// Fixed-point scale of the sums of squares: 2^48 units per squared radiance unit.
+pub const SQ_SCALE: f64 = 281_474_976_710_656.0;
+/// Largest pass estimate accepted; larger (or non-finite) samples are dropped and counted.
+/// Keeps one sample's square inside the `i128` range at `SQ_SCALE`.
+pub const MAX_SAMPLE: f64 = 1.0e11;
+
 /// One pass's estimate per layer, pixel and bin, in radiance units.
 #[derive(Clone, Debug)]
 pub struct PassBuffer {
@@ -25,6 +41,8 @@ pub struct PassBuffer {
     pub n: usize,
     /// `[layer][pixel][bin]`.
     pub data: Vec<f32>,
+    /// Samples not added because a value was not finite (reaches `Film::dropped`).
+    pub dropped: u64,
 }
 
 impl PassBuffer {
@@ -33,6 +51,38 @@ impl PassBuffer {
             pixels,
             n,
             data: vec![0.0; LAYERS * pixels * n],
+            dropped: 0,
+        }
+    }
+
+    /// Adds the sample `w * f * scale` (per bin) to a pixel, unless some bin of it is not
+    /// finite: then the whole sample is dropped and counted, so one bad path cannot poison a
+    /// pixel (a NaN would otherwise erase every other sample of the pass in that slot).
+    #[inline]
+    pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
+        let finite = w
+            .iter()
+            .zip(f)
+            .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite());
+        if !finite {
+            self.dropped += 1;
+            return;
+        }
+        let slot = self.slot(layer, pixel);
+        for ((s, w), f) in slot.iter_mut().zip(w).zip(f) {
+            *s += w * f * scale;
+        }
+    }
+
+    /// Adds the sample `v * scale` to a pixel, or drops and counts it (see `splat`).
+    #[inline]
+    pub fn splat_scaled(&mut self, layer: Layer, pixel: usize, v: &[f32], scale: f32) {
+        if !v.iter().fold(true, |ok, x| ok & (x * scale).is_finite()) {
+            self.dropped += 1;
+            return;
+        }
+        for (s, x) in self.slot(layer, pixel).iter_mut().zip(v) {
+            *s += x * scale;
         }
     }
 
@@ -44,6 +94,7 @@ impl PassBuffer {
 
     /// Adds `other` elementwise; the order of calls fixes the floating-point result.
     pub fn add(&mut self, other: &PassBuffer) {
+        self.dropped += other.dropped;
         self.data
             .par_chunks_mut(1 << 14)
             .zip(other.data.par_chunks(1 << 14))
@@ -55,33 +106,57 @@ impl PassBuffer {
     }
 }
 
-/// The film: pass estimates averaged, with per-pixel statistics across passes.
-#[derive(Clone, Debug)]
+/// The film: pass estimates of a contiguous range of passes `first .. first + passes`, summed,
+/// with per-pixel statistics across passes.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     pub width: usize,
     pub height: usize,
     pub grid: SpectralGrid,
+    /// Index of the first pass in the film (0 unless it is a slice of a distributed render).
+    pub first: u64,
+    /// Number of passes added.
     pub passes: u64,
-    /// `[layer][pixel][bin]` sums of pass estimates.
-    pub sum: Vec<f64>,
-    /// `[pixel][bin]` sums of squared total pass estimates.
-    pub sum_sq: Vec<f64>,
-    /// Samples dropped because they were not finite.
+    /// `[layer][pixel][bin]` sums of pass estimates, fixed point at `SUM_SCALE`.
+    pub sum: Vec<i128>,
+    /// `[pixel][bin]` sums of squared total pass estimates, fixed point at `SQ_SCALE`.
+    pub sum_sq: Vec<i128>,
+    /// Samples dropped because they were not finite (or beyond `MAX_SAMPLE`).
     pub dropped: u64,
+}
+
+/// Why two films cannot be merged.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum MergeError {
+    #[error("films differ in size or spectral grid")]
+    Shape,
+    #[error("pass ranges are not adjacent: {0}..{1} then {2}..{3}")]
+    Gap(u64, u64, u64, u64),
 }
 
 impl Film {
     pub fn new(width: usize, height: usize, grid: SpectralGrid) -> Self {
+        Self::starting_at(width, height, grid, 0)
+    }
+
+    /// An empty film whose first pass will be pass `first` of the seed's sequence.
+    pub fn starting_at(width: usize, height: usize, grid: SpectralGrid, first: u64) -> Self {
         let px = width * height * grid.n;
         Self {
             width,
             height,
             grid,
+            first,
             passes: 0,
-            sum: vec![0.0; LAYERS * px],
-            sum_sq: vec![0.0; px],
+            sum: vec![0; LAYERS * px],
+            sum_sq: vec![0; px],
             dropped: 0,
         }
+    }
+
+    /// The pass index after the last one added.
+    pub fn end(&self) -> u64 {
+        self.first + self.passes
     }
 
     pub fn add_pass(&mut self, pass: &PassBuffer) {
@@ -91,16 +166,50 @@ impl Film {
         let mut dropped = 0u64;
         for i in 0..px {
             let (m, s) = (medium[i] as f64, surface[i] as f64);
-            if !(m.is_finite() && s.is_finite()) {
+            if !(m.abs() <= MAX_SAMPLE && s.abs() <= MAX_SAMPLE) {
                 dropped += 1;
                 continue;
             }
-            sum_m[i] += m;
-            sum_s[i] += s;
-            self.sum_sq[i] += (m + s) * (m + s);
+            sum_m[i] = sum_m[i].wrapping_add(to_fixed(m, SUM_SCALE));
+            sum_s[i] = sum_s[i].wrapping_add(to_fixed(s, SUM_SCALE));
+            let t = m + s;
+            self.sum_sq[i] = self.sum_sq[i].wrapping_add(to_fixed(t * t, SQ_SCALE));
         }
-        self.dropped += dropped;
+        self.dropped += dropped + pass.dropped;
         self.passes += 1;
+    }
+
+    /// Adds the passes of `other`, which must directly follow or precede this film's range.
+    /// The result is bit-identical to rendering the union in one run.
+    pub fn merge(&mut self, other: &Film) -> Result<(), MergeError> {
+        if (self.width, self.height, self.grid) != (other.width, other.height, other.grid) {
+            return Err(MergeError::Shape);
+        }
+        if self.passes > 0 && other.passes > 0 {
+            if other.first == self.end() {
+                // other follows
+            } else if other.end() == self.first {
+                self.first = other.first;
+            } else {
+                return Err(MergeError::Gap(
+                    self.first,
+                    self.end(),
+                    other.first,
+                    other.end(),
+                ));
+            }
+        } else if self.passes == 0 {
+            self.first = other.first;
+        }
+        for (a, b) in self.sum.iter_mut().zip(&other.sum) {
+            *a = a.wrapping_add(*b);
+        }
+        for (a, b) in self.sum_sq.iter_mut().zip(&other.sum_sq) {
+            *a = a.wrapping_add(*b);
+        }
+        self.passes += other.passes;
+        self.dropped += other.dropped;
+        Ok(())
     }
 
     /// The mean over passes, its standard error, and the two component layers.
@@ -111,25 +220,125 @@ impl Film {
         let (sum_m, sum_s) = self.sum.split_at(px);
         let mut noise = vec![0.0f32; px];
         for i in 0..px {
-            let total = sum_m[i] + sum_s[i];
+            let total = sum_m[i].wrapping_add(sum_s[i]) as f64 / SUM_SCALE;
             let mean = total / p;
             img.data[i] = mean as f32;
             if self.passes > 1 {
-                let var = ((self.sum_sq[i] - p * mean * mean) / (p - 1.0)).max(0.0);
+                let sq = self.sum_sq[i] as f64 / SQ_SCALE;
+                let var = ((sq - p * mean * mean) / (p - 1.0)).max(0.0);
                 noise[i] = (var / p).sqrt() as f32;
             }
         }
         img.noise = Some(noise);
+        let layer = |s: &[i128]| {
+            s.iter()
+                .map(|v| (*v as f64 / SUM_SCALE / p) as f32)
+                .collect()
+        };
         img.layers = vec![
-            (
-                "medium".into(),
-                sum_m.iter().map(|v| (v / p) as f32).collect(),
-            ),
-            (
-                "surface".into(),
-                sum_s.iter().map(|v| (v / p) as f32).collect(),
-            ),
+            ("medium".into(), layer(sum_m)),
+            ("surface".into(), layer(sum_s)),
         ];
         img
+    }
+}
+
+/// Rounds `v * scale` to the nearest integer (exact for the f32-derived values it gets: the
+/// rounding depends on the value only, never on what it is added to).
+#[inline]
+fn to_fixed(v: f64, scale: f64) -> i128 {
+    (v * scale).round() as i128
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid() -> SpectralGrid {
+        SpectralGrid {
+            n: 2,
+            lambda_min: 400.0,
+            lambda_max: 700.0,
+        }
+    }
+
+    fn pass(values: &[f32]) -> PassBuffer {
+        let mut b = PassBuffer::new(2, 2);
+        b.data.copy_from_slice(values);
+        b
+    }
+
+    #[test]
+    fn merge_in_any_grouping_equals_sequential_adds() {
+        let passes: Vec<PassBuffer> = (0..6)
+            .map(|p| {
+                let v: Vec<f32> = (0..8)
+                    .map(|i| ((p * 8 + i) as f32 * 0.731).sin() * 10f32.powi(i - 4))
+                    .collect();
+                pass(&v)
+            })
+            .collect();
+        let mut straight = Film::new(2, 1, grid());
+        passes.iter().for_each(|p| straight.add_pass(p));
+        let slice = |a: usize, b: usize| {
+            let mut f = Film::starting_at(2, 1, grid(), a as u64);
+            passes[a..b].iter().for_each(|p| f.add_pass(p));
+            f
+        };
+        let mut merged = slice(4, 6);
+        merged.merge(&slice(1, 4)).unwrap();
+        merged.merge(&slice(0, 1)).unwrap();
+        assert_eq!(merged, straight);
+        let a = straight.image();
+        let b = merged.image();
+        assert_eq!(a.data, b.data);
+        assert_eq!(a.noise, b.noise);
+    }
+
+    #[test]
+    fn non_finite_and_huge_samples_are_dropped_and_counted() {
+        let mut f = Film::new(2, 1, grid());
+        f.add_pass(&pass(&[
+            f32::NAN,
+            1.0,
+            2.0,
+            1e30,
+            0.0,
+            0.0,
+            0.0,
+            f32::INFINITY,
+        ]));
+        assert_eq!(f.dropped, 2);
+        let img = f.image();
+        assert!(img.data.iter().all(|v| v.is_finite()));
+        assert_eq!(img.data[1], 1.0);
+        assert_eq!(img.data[2], 2.0);
+    }
+
+    #[test]
+    fn a_non_finite_sample_is_dropped_without_erasing_its_pixel() {
+        let mut b = PassBuffer::new(2, 2);
+        b.splat(Layer::Medium, 1, &[1.0, 2.0], &[3.0, 4.0], 0.5);
+        b.splat(Layer::Medium, 1, &[1.0, f32::NAN], &[3.0, 4.0], 0.5);
+        b.splat(Layer::Medium, 1, &[1e30, 1.0], &[1e30, 1.0], 1.0);
+        b.splat_scaled(Layer::Surface, 0, &[f32::INFINITY, 0.0], 1.0);
+        b.splat_scaled(Layer::Surface, 0, &[1.0, 2.0], 2.0);
+        assert_eq!(b.dropped, 3);
+        let mut f = Film::new(2, 1, grid());
+        f.add_pass(&b);
+        assert_eq!(f.dropped, 3);
+        let img = f.image();
+        assert_eq!(img.data, vec![2.0, 4.0, 1.5, 4.0]);
+    }
+
+    #[test]
+    fn gaps_and_shape_mismatches_are_refused() {
+        let mut a = Film::starting_at(2, 1, grid(), 0);
+        a.add_pass(&pass(&[0.0; 8]));
+        let mut b = Film::starting_at(2, 1, grid(), 2);
+        b.add_pass(&pass(&[0.0; 8]));
+        assert_eq!(a.merge(&b), Err(MergeError::Gap(0, 1, 2, 3)));
+        let c = Film::new(1, 2, grid());
+        assert_eq!(a.clone().merge(&c), Err(MergeError::Shape));
     }
 }

@@ -1,8 +1,10 @@
 //! The film: per-pixel spectral accumulation, statistics across passes, and image output.
 
 mod accum;
+pub mod checkpoint;
 mod image;
 pub mod output;
 
-pub use accum::{Film, LAYERS, Layer, PassBuffer};
+pub use accum::{Film, LAYERS, Layer, MAX_SAMPLE, MergeError, PassBuffer};
+pub use checkpoint::{FilmFile, FilmFileError, FilmId};
 pub use image::SpectralImage;

@@ -109,10 +109,7 @@ pub fn camera_pass(
 pub fn splat_direct(out: &CameraOutput, buf: &mut PassBuffer, scale: f32) {
     for (pixel, v) in &out.direct {
         let n = buf.n;
-        let slot = buf.slot(Layer::Surface, *pixel as usize);
-        for (s, x) in slot.iter_mut().zip(v.as_slice(n)) {
-            *s += x * scale;
-        }
+        buf.splat_scaled(Layer::Surface, *pixel as usize, v.as_slice(n), scale);
     }
 }
 

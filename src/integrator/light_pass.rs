@@ -210,10 +210,8 @@ impl ForwardTracer<'_> {
             let factor = f * *flux * inv_area;
             let w = gather.weight(rec.weight, n);
             let norm = self.norm;
-            let slot = self.buf.slot(Layer::Surface, rec.pixel as usize);
-            for ((s, w), f) in slot.iter_mut().zip(w).zip(factor.0.iter()) {
-                *s += w * f * norm;
-            }
+            self.buf
+                .splat(Layer::Surface, rec.pixel as usize, w, &factor.0[..n], norm);
         });
     }
 
@@ -285,10 +283,7 @@ impl ForwardTracer<'_> {
                 }
             };
             let w = gather.weight(rec.weight, n);
-            let slot = buf.slot(Layer::Medium, rec.pixel as usize);
-            for ((s, w), f) in slot.iter_mut().zip(w).zip(factor.0.iter()) {
-                *s += w * f * norm;
-            }
+            buf.splat(Layer::Medium, rec.pixel as usize, w, &factor.0[..n], norm);
         });
     }
 }

@@ -1,6 +1,7 @@
 //! The pass loop: camera pass -> gather structure -> light pass -> film, until a budget of
 //! passes or wall-clock time is spent. Radii shrink progressively when `integrator.alpha` < 1.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use super::camera_pass::{camera_pass, splat_direct};
@@ -79,8 +80,38 @@ impl<'a> Renderer<'a> {
         }
     }
 
+    /// A renderer whose first pass is pass `first` of the seed's sequence (a slice of a
+    /// distributed render, see `Film::merge`).
+    pub fn starting_at(scene: &'a Scene, seed: u64, first: u64) -> Self {
+        let mut r = Self::new(scene, seed);
+        r.film.first = first;
+        r.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, first);
+        r
+    }
+
+    /// A renderer that continues `film` (restored from a checkpoint): the next pass is
+    /// `film.end()`, rendered exactly as an uninterrupted run would render it. Fails when the
+    /// film's size or spectral grid is not the scene's.
+    pub fn resume(scene: &'a Scene, seed: u64, film: Film) -> Result<Self, String> {
+        let mut r = Self::new(scene, seed);
+        if (film.width, film.height, film.grid) != (r.film.width, r.film.height, r.film.grid) {
+            return Err(format!(
+                "the film is {}x{} pixels with {} bins, the scene renders {}x{} with {}",
+                film.width, film.height, film.grid.n, r.film.width, r.film.height, r.film.grid.n
+            ));
+        }
+        r.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, film.end());
+        r.film = film;
+        Ok(r)
+    }
+
     pub fn film(&self) -> &Film {
         &self.film
+    }
+
+    /// Gives the film away (for saving) without copying it.
+    pub fn into_film(self) -> Film {
+        self.film
     }
 
     pub fn image(&self) -> SpectralImage {
@@ -92,12 +123,12 @@ impl<'a> Renderer<'a> {
         self.radius
     }
 
-    /// Renders pass number `self.film.passes` and adds it to the film. When the gather records
+    /// Renders pass number `self.film.end()` and adds it to the film. When the gather records
     /// of the whole image would exceed `integrator.max_gather_bytes`, the pass is split into
     /// tiles of rows, each with its own gather structure and light pass.
     pub fn render_pass(&mut self) {
         let scene = self.scene;
-        let pass = self.film.passes;
+        let pass = self.film.end();
         self.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, pass);
         let (w, h) = scene.camera.resolution();
         let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
@@ -134,19 +165,38 @@ impl<'a> Renderer<'a> {
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.
+    /// `Budget::Passes(p)` counts the passes in the film, including restored ones.
     pub fn run(&mut self, budget: Budget, mut progress: impl FnMut(u64, f64)) {
+        self.run_until(budget, &AtomicBool::new(false), |film, t| {
+            progress(film.passes, t)
+        });
+    }
+
+    /// Like `run`, but stops before starting a pass once `stop` is set (an interrupt: the pass
+    /// in flight is finished, so every pass in the film is whole). Returns true when stopped
+    /// early. `after_pass(film, seconds)` sees the film after each pass (to report progress or
+    /// save a checkpoint).
+    pub fn run_until(
+        &mut self,
+        budget: Budget,
+        stop: &AtomicBool,
+        mut after_pass: impl FnMut(&Film, f64),
+    ) -> bool {
         let start = Instant::now();
         loop {
-            self.render_pass();
-            let elapsed = start.elapsed().as_secs_f64();
-            progress(self.film.passes, elapsed);
             let done = match budget {
                 Budget::Passes(p) => self.film.passes >= p as u64,
-                Budget::Time(t) => elapsed >= t,
+                // At least one pass even with a zero time budget.
+                Budget::Time(t) => self.film.passes > 0 && start.elapsed().as_secs_f64() >= t,
             };
             if done {
-                break;
+                return false;
             }
+            if stop.load(Ordering::SeqCst) {
+                return true;
+            }
+            self.render_pass();
+            after_pass(&self.film, start.elapsed().as_secs_f64());
         }
     }
 }

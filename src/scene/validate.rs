@@ -25,6 +25,9 @@ fn builtin_list() -> String {
 /// Largest image side and pixel count accepted (beyond this the film alone would exhaust memory).
 pub const MAX_SIDE: u32 = 32_768;
 pub const MAX_PIXELS: u64 = 1 << 27;
+/// Largest texture accepted, checked from the image header before any decoding.
+pub const MAX_TEXTURE_SIDE: u32 = 16_384;
+pub const MAX_TEXTURE_PIXELS: u64 = 1 << 26;
 
 struct Checker<'a> {
     scene: &'a LoadedScene,
@@ -74,6 +77,39 @@ impl Checker<'_> {
         let p = self.scene.resolve(rel);
         if !p.is_file() {
             self.fail(key, format!("file not found: {}", p.display()));
+        }
+    }
+
+    /// A texture file: present, readable as an image, and of sane size, judged from its header
+    /// so that a forged or absurd file is refused before its pixels are allocated.
+    fn texture(&mut self, key: &str, rel: &str) {
+        let p = self.scene.resolve(rel);
+        if !p.is_file() {
+            return self.fail(key, format!("file not found: {}", p.display()));
+        }
+        let dims = image::ImageReader::open(&p)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| e.to_string())
+            .and_then(|r| r.into_dimensions().map_err(|e| e.to_string()));
+        match dims {
+            Err(e) => self.fail(key, format!("{}: not a readable image: {e}", p.display())),
+            Ok((w, h)) => {
+                if w == 0
+                    || h == 0
+                    || w > MAX_TEXTURE_SIDE
+                    || h > MAX_TEXTURE_SIDE
+                    || w as u64 * h as u64 > MAX_TEXTURE_PIXELS
+                {
+                    self.fail(
+                        key,
+                        format!(
+                            "{}: a {w}x{h} texture is outside the supported 1..={MAX_TEXTURE_SIDE} \
+                             pixels per side ({MAX_TEXTURE_PIXELS} pixels in all)",
+                            p.display()
+                        ),
+                    );
+                }
+            }
         }
     }
 
@@ -302,7 +338,7 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
             c.spectrum_ref(&format!("{key}.albedo"), a, d);
         }
         if let Some(t) = &m.texture {
-            c.file(&format!("{key}.texture"), t);
+            c.texture(&format!("{key}.texture"), t);
         }
         if let Some(ior) = &m.ior {
             c.spectrum_ref(&format!("{key}.ior"), ior, d);
