@@ -29,8 +29,9 @@ impl MemoryEstimate {
         let gather_volumes = paths * per_path;
         let bins = d.film.bins as f64;
         let gather_bytes = gather_volumes * (GATHER_RECORD_BYTES + 4.0 * bins);
-        // Running sums and sums of squares in f64 per pixel and bin, plus component layers.
-        let film_bytes = pixels * bins * 8.0 * 4.0;
+        // Per pixel and bin: exact i128 sums of the two layers and of squares (48 bytes), the
+        // pass buffer and the light pass's chunk buffers in flight (f32, two layers each).
+        let film_bytes = pixels * bins * (48.0 + 8.0 * 5.0);
         Self {
             gather_volumes,
             gather_bytes,

@@ -66,7 +66,10 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
 
     // Resolve every named spectrum once, so that a bad file is reported even if unused.
     for name in d.spectra.keys() {
-        spectra.unbounded(&SpectrumRef::Named(name.clone()), &format!("spectra.{name}"))?;
+        spectra.unbounded(
+            &SpectrumRef::Named(name.clone()),
+            &format!("spectra.{name}"),
+        )?;
     }
     let media_ids: BTreeMap<&str, u32> = d
         .media

@@ -19,7 +19,9 @@ pub fn is_builtin(name: &str) -> bool {
 }
 
 fn builtin_list() -> String {
-    crate::spectrum::builtin_names().collect::<Vec<_>>().join(", ")
+    crate::spectrum::builtin_names()
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Largest image side and pixel count accepted (beyond this the film alone would exhaust memory).
