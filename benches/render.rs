@@ -1,6 +1,6 @@
 //! End-to-end throughput on scenes/fog-cube.toml: camera paths/s, gather build time and forward
-//! rays/s for q = 1, q = 0.1 and cylinders, at 1 and 2 threads. Not a criterion bench: a pass is
-//! hundreds of milliseconds, so each case renders a few whole passes and reports the engine's own
+//! rays/s for q = 1, 0.3, 0.1, 0.03, truncated and eq. 2 cylinders, at 1 and 2 threads. Not a
+//! criterion bench: a pass is hundreds of milliseconds, so each case renders a few whole passes and reports the engine's own
 //! timers (`Renderer::stats`). Run: `cargo bench --bench render` (env BRUME_BENCH_PASSES=N,
 //! default 3; BRUME_BENCH_THREADS="1 2").
 
@@ -25,9 +25,15 @@ fn main() {
         .filter_map(|s| s.parse().ok())
         .collect();
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fog-cube.toml");
-    let cases: [(&str, &[&str]); 3] = [
+    let cases: [(&str, &[&str]); 6] = [
         ("q=1 spheres", &["integrator.q=1.0"]),
+        ("q=0.3 spheres", &["integrator.q=0.3"]),
         ("q=0.1 spheres", &["integrator.q=0.1"]),
+        ("q=0.03 spheres", &["integrator.q=0.03"]),
+        (
+            "truncated cylinders",
+            &["integrator.volume=\"cylinder-truncated\""],
+        ),
         ("cylinders", &["integrator.volume=\"cylinder\""]),
     ];
     println!(
