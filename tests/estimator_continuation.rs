@@ -29,15 +29,7 @@ const L: f32 = 1.5;
 const I: [f64; N] = [1.0, 0.8, 1.2, 2.0];
 
 fn medium() -> HomogeneousMedium {
-    let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
-    let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    HomogeneousMedium::new(
-        &Spectrum::from_slice(&ss),
-        &Spectrum::from_slice(&sa),
-        0.0,
-        N,
-    )
-    .unwrap()
+    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
 }
 
 /// Light side, written independently of the library: analog transport in bin `l` of a particle

@@ -19,15 +19,7 @@ const ST: [f32; N] = [0.05, 0.7, 3.0, 20.0];
 const ALB: [f32; N] = [0.9, 0.5, 0.8, 0.4];
 
 fn medium() -> HomogeneousMedium {
-    let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
-    let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    HomogeneousMedium::new(
-        &Spectrum::from_slice(&ss),
-        &Spectrum::from_slice(&sa),
-        0.0,
-        N,
-    )
-    .unwrap()
+    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
 }
 
 fn chord(lam1: f32, c: f32, tau1: f32, uv: f32) -> CylinderChord {

@@ -24,15 +24,7 @@ const EDGES: [f32; 4] = [0.0, 0.05, 0.3, T];
 const PROBES: [f32; 3] = [0.02, 0.25, 0.7];
 
 fn medium() -> HomogeneousMedium {
-    let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
-    let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    HomogeneousMedium::new(
-        &Spectrum::from_slice(&ss),
-        &Spectrum::from_slice(&sa),
-        0.2,
-        N,
-    )
-    .unwrap()
+    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.2).unwrap()
 }
 
 #[test]

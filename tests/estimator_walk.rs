@@ -30,15 +30,7 @@ const T: f32 = 1.0;
 const W_PICK: [f32; N] = [1.0, 0.05, 2.0, 0.3];
 
 fn medium() -> HomogeneousMedium {
-    let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
-    let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    HomogeneousMedium::new(
-        &Spectrum::from_slice(&ss),
-        &Spectrum::from_slice(&sa),
-        0.5,
-        N,
-    )
-    .unwrap()
+    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.5).unwrap()
 }
 
 fn mixture(m: &HomogeneousMedium, pick: ChannelPick) -> Mixture {

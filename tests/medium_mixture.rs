@@ -12,15 +12,7 @@ use rand_pcg::Pcg64Mcg;
 fn medium() -> HomogeneousMedium {
     let st = [0.05f32, 0.8, 4.0, 30.0];
     let a = [0.9f32, 0.5, 0.99, 0.2];
-    let ss: Vec<f32> = st.iter().zip(a).map(|(t, a)| t * a).collect();
-    let sa: Vec<f32> = st.iter().zip(a).map(|(t, a)| t * (1.0 - a)).collect();
-    HomogeneousMedium::new(
-        &Spectrum::from_slice(&ss),
-        &Spectrum::from_slice(&sa),
-        0.3,
-        4,
-    )
-    .unwrap()
+    HomogeneousMedium::from_extinction_albedo(&st, &a, 0.3).unwrap()
 }
 
 #[test]

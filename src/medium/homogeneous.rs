@@ -58,6 +58,19 @@ impl HomogeneousMedium {
         })
     }
 
+    /// From per-bin extinction (1/m) and single-scattering albedo, the paper's parametrisation:
+    /// sigma_s = albedo sigma_t, sigma_a = (1 - albedo) sigma_t. Slices give bins 0..len.
+    pub fn from_extinction_albedo(
+        sigma_t: &[f32],
+        albedo: &[f32],
+        g: f32,
+    ) -> Result<Self, MediumError> {
+        let n = sigma_t.len().min(albedo.len());
+        let ss: Vec<f32> = (0..n).map(|l| sigma_t[l] * albedo[l]).collect();
+        let sa: Vec<f32> = (0..n).map(|l| sigma_t[l] * (1.0 - albedo[l])).collect();
+        Self::new(&Spectrum::from_slice(&ss), &Spectrum::from_slice(&sa), g, n)
+    }
+
     /// Henyey–Greenstein asymmetry.
     pub fn g(&self) -> f32 {
         self.phase.g()
