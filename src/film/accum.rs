@@ -163,18 +163,30 @@ impl Film {
         let px = self.width * self.height * self.grid.n;
         let (medium, surface) = pass.data.split_at(px);
         let (sum_m, sum_s) = self.sum.split_at_mut(px);
-        let mut dropped = 0u64;
-        for i in 0..px {
-            let (m, s) = (medium[i] as f64, surface[i] as f64);
-            if !(m.abs() <= MAX_SAMPLE && s.abs() <= MAX_SAMPLE) {
-                dropped += 1;
-                continue;
-            }
-            sum_m[i] = sum_m[i].wrapping_add(to_fixed(m, SUM_SCALE));
-            sum_s[i] = sum_s[i].wrapping_add(to_fixed(s, SUM_SCALE));
-            let t = m + s;
-            self.sum_sq[i] = self.sum_sq[i].wrapping_add(to_fixed(t * t, SQ_SCALE));
-        }
+        // Every element is independent and the drop count is an integer sum, so splitting the
+        // work between threads cannot change a bit of the film.
+        const BLOCK: usize = 1 << 12;
+        let dropped: u64 = sum_m
+            .par_chunks_mut(BLOCK)
+            .zip(sum_s.par_chunks_mut(BLOCK))
+            .zip(self.sum_sq.par_chunks_mut(BLOCK))
+            .zip(medium.par_chunks(BLOCK).zip(surface.par_chunks(BLOCK)))
+            .map(|(((sum_m, sum_s), sum_sq), (medium, surface))| {
+                let mut dropped = 0u64;
+                for i in 0..medium.len() {
+                    let (m, s) = (medium[i] as f64, surface[i] as f64);
+                    if !(m.abs() <= MAX_SAMPLE && s.abs() <= MAX_SAMPLE) {
+                        dropped += 1;
+                        continue;
+                    }
+                    sum_m[i] = sum_m[i].wrapping_add(to_fixed(m, SUM_SCALE));
+                    sum_s[i] = sum_s[i].wrapping_add(to_fixed(s, SUM_SCALE));
+                    let t = m + s;
+                    sum_sq[i] = sum_sq[i].wrapping_add(to_fixed(t * t, SQ_SCALE));
+                }
+                dropped
+            })
+            .sum();
         self.dropped += dropped + pass.dropped;
         self.passes += 1;
     }

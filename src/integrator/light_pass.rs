@@ -2,18 +2,20 @@
 //! forward segment in a medium is tested against the integration volumes and every diffuse
 //! surface hit against the surface spheres.
 
+use std::collections::BTreeMap;
 use std::f32::consts::PI;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 
 use glam::Vec3;
 use rand::Rng as _;
-use rayon::prelude::*;
 
 use super::camera_pass::MAX_CROSSINGS;
 use super::gather::Gather;
 use super::record::{CLASS_C, CLASS_D, VolumeRecord, VolumeShape};
 use super::rng::{self, Domain, Rng};
 use super::volume;
-use crate::film::{Layer, PassBuffer};
+use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray, spawn};
 use crate::material::LobeKind;
 use crate::medium::{FlightEnd, ForwardFlight, Mixture};
@@ -28,6 +30,11 @@ pub fn chunk_size(total: u64) -> u64 {
 
 /// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
 /// (0 unless a memory budget split it), keeping their random streams apart.
+///
+/// Workers take chunks in order and trace them without waiting for each other; a finished
+/// chunk is added to `buf` as soon as every earlier chunk has been, so the sums are formed in
+/// chunk order whatever the thread count. A worker only runs ahead of the oldest unfinished
+/// chunk by a window of chunks, which bounds the memory of finished-but-unadded chunks.
 pub fn light_pass(
     scene: &Scene,
     gather: &Gather,
@@ -40,36 +47,98 @@ pub fn light_pass(
     let total = scene.settings.forward_rays;
     let chunk = chunk_size(total);
     let chunks = total.div_ceil(chunk);
-    // Chunks in flight at once: bounds memory; it does not change the result.
-    let wave = (2 * rayon::current_num_threads() as u64).max(2);
-    let mut c0 = 0;
-    while c0 < chunks {
-        let c1 = (c0 + wave).min(chunks);
-        let parts: Vec<PassBuffer> = (c0..c1)
-            .into_par_iter()
-            .map(|c| {
-                let mut part = PassBuffer::new(buf.pixels, buf.n);
-                let mut rng = rng::stream(seed, pass, Domain::Light, (tile << 40) | c);
-                let rays = chunk.min(total - c * chunk);
-                let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
-                let mut tracer = ForwardTracer {
-                    scene,
-                    long,
-                    gather,
-                    norm,
-                    buf: &mut part,
-                };
-                for _ in 0..rays {
-                    tracer.trace(&mut rng);
+    let workers = rayon::current_num_threads().max(1) as u64;
+    let window = 2 * workers;
+    let (pixels, n) = (buf.pixels, buf.n);
+    let order = Mutex::new(Order {
+        next_add: 0,
+        finished: BTreeMap::new(),
+        spare: Vec::new(),
+        buf,
+    });
+    let added = Condvar::new();
+    let next_chunk = AtomicU64::new(0);
+    let aborted = AtomicBool::new(false);
+    let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
+    rayon::scope(|s| {
+        for _ in 0..workers.min(chunks) {
+            s.spawn(|_| {
+                // A worker that panics never adds its chunk: wake the others so that they stop
+                // instead of waiting for it forever (the panic then reaches the caller).
+                let _wake = WakeOnPanic(&aborted, &added, &order);
+                loop {
+                    let c = next_chunk.fetch_add(1, Ordering::Relaxed);
+                    if c >= chunks {
+                        return;
+                    }
+                    let mut sink = {
+                        let mut o = lock(&order);
+                        while c >= o.next_add + window {
+                            if aborted.load(Ordering::Relaxed) {
+                                return;
+                            }
+                            o = added.wait(o).unwrap_or_else(PoisonError::into_inner);
+                        }
+                        o.spare.pop()
+                    }
+                    .unwrap_or_else(|| ChunkSplats::new(pixels, n));
+                    let mut rng = rng::stream(seed, pass, Domain::Light, (tile << 40) | c);
+                    let rays = chunk.min(total - c * chunk);
+                    let mut tracer = ForwardTracer {
+                        scene,
+                        long,
+                        gather,
+                        norm,
+                        buf: &mut sink,
+                    };
+                    for _ in 0..rays {
+                        tracer.trace(&mut rng);
+                    }
+                    let mut o = lock(&order);
+                    o.finished.insert(c, sink);
+                    o.add_ready();
+                    added.notify_all();
                 }
-                part
-            })
-            .collect();
-        for p in &parts {
-            buf.add(p);
+            });
         }
-        c0 = c1;
+    });
+}
+
+/// The ordered hand-over of finished chunks into the pass buffer.
+struct Order<'b> {
+    next_add: u64,
+    finished: BTreeMap<u64, ChunkSplats>,
+    spare: Vec<ChunkSplats>,
+    buf: &'b mut PassBuffer,
+}
+
+impl Order<'_> {
+    fn add_ready(&mut self) {
+        while let Some(mut sink) = self.finished.remove(&self.next_add) {
+            sink.drain_into(self.buf);
+            self.spare.push(sink);
+            self.next_add += 1;
+        }
     }
+}
+
+struct WakeOnPanic<'a, 'b>(&'a AtomicBool, &'a Condvar, &'a Mutex<Order<'b>>);
+
+impl Drop for WakeOnPanic<'_, '_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            // Under the lock, so no waiter can miss the flag between its check and its wait.
+            let _o = lock(self.2);
+            self.0.store(true, Ordering::Relaxed);
+            self.1.notify_all();
+        }
+    }
+}
+
+/// A poisoned lock only means another worker panicked; the panic reaches the caller through
+/// the scope anyway, so the data is still fine to use here.
+fn lock<'m, 'b>(m: &'m Mutex<Order<'b>>) -> MutexGuard<'m, Order<'b>> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 struct ForwardTracer<'a> {
@@ -78,7 +147,7 @@ struct ForwardTracer<'a> {
     long: bool,
     gather: &'a Gather,
     norm: f32,
-    buf: &'a mut PassBuffer,
+    buf: &'a mut ChunkSplats,
 }
 
 impl ForwardTracer<'_> {

@@ -1,0 +1,163 @@
+//! What one chunk of forward rays adds to a pass.
+//!
+//! A chunk keeps its splats as a log (slot index + values) while the log is smaller than a
+//! dense pass buffer, and switches to a dense buffer once it would not be. Small images and
+//! sparse chunks then cost memory in proportion to what they splat, not to the image size,
+//! and the tracing thread writes sequentially instead of scattering over megabytes of film.
+//! Draining chunks into the pass in chunk order makes the pass's floating-point sums depend
+//! only on the chunk boundaries, never on which thread traced which chunk.
+
+use super::accum::{LAYERS, Layer, PassBuffer};
+
+pub struct ChunkSplats {
+    pixels: usize,
+    n: usize,
+    /// `layer * pixels + pixel` of each logged splat.
+    slots: Vec<u32>,
+    /// `n` values per logged splat.
+    values: Vec<f32>,
+    /// The dense `[layer][pixel][bin]` sums once the log outgrew them (kept for reuse, zeroed).
+    dense: Vec<f32>,
+    is_dense: bool,
+    dropped: u64,
+}
+
+impl ChunkSplats {
+    pub fn new(pixels: usize, n: usize) -> Self {
+        Self {
+            pixels,
+            n,
+            slots: Vec::new(),
+            values: Vec::new(),
+            dense: Vec::new(),
+            is_dense: false,
+            dropped: 0,
+        }
+    }
+
+    fn dense_len(&self) -> usize {
+        LAYERS * self.pixels * self.n
+    }
+
+    /// Adds the sample `w * f * scale` (per bin) to a pixel; a sample with a non-finite bin is
+    /// dropped whole and counted, as in [`PassBuffer::splat`].
+    #[inline]
+    pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
+        let n = self.n;
+        let (w, f) = (&w[..n], &f[..n]);
+        let finite = w
+            .iter()
+            .zip(f)
+            .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite());
+        if !finite {
+            self.dropped += 1;
+            return;
+        }
+        let slot = layer as usize * self.pixels + pixel;
+        if self.is_dense {
+            let d = &mut self.dense[slot * n..slot * n + n];
+            for ((d, w), f) in d.iter_mut().zip(w).zip(f) {
+                *d += w * f * scale;
+            }
+            return;
+        }
+        if self.values.len() + n > self.dense_len() {
+            self.go_dense();
+            return self.splat(layer, pixel, w, f, scale);
+        }
+        self.slots.push(slot as u32);
+        self.values
+            .extend(w.iter().zip(f).map(|(w, f)| w * f * scale));
+    }
+
+    /// Replays the log into the dense buffer; later splats go there directly.
+    fn go_dense(&mut self) {
+        let n = self.n;
+        let len = self.dense_len();
+        if self.dense.len() != len {
+            self.dense = vec![0.0; len];
+        }
+        for (slot, v) in self.slots.iter().zip(self.values.chunks_exact(n)) {
+            let i = *slot as usize * n;
+            for (d, v) in self.dense[i..i + n].iter_mut().zip(v) {
+                *d += *v;
+            }
+        }
+        self.slots.clear();
+        self.values.clear();
+        self.is_dense = true;
+    }
+
+    /// Adds everything into `buf` and empties the chunk (keeping its allocations for the next).
+    pub fn drain_into(&mut self, buf: &mut PassBuffer) {
+        let n = self.n;
+        debug_assert_eq!((buf.pixels, buf.n), (self.pixels, n));
+        buf.dropped += std::mem::take(&mut self.dropped);
+        if self.is_dense {
+            for (b, d) in buf.data.iter_mut().zip(self.dense.iter_mut()) {
+                *b += *d;
+                *d = 0.0;
+            }
+            self.is_dense = false;
+            return;
+        }
+        for (slot, v) in self.slots.iter().zip(self.values.chunks_exact(n)) {
+            let i = *slot as usize * n;
+            for (b, v) in buf.data[i..i + n].iter_mut().zip(v) {
+                *b += *v;
+            }
+        }
+        self.slots.clear();
+        self.values.clear();
+    }
+
+    /// Bytes held (log and dense buffer), for memory reports.
+    pub fn bytes(&self) -> usize {
+        self.slots.capacity() * 4 + self.values.capacity() * 4 + self.dense.capacity() * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Log and dense modes add exactly what direct splats into a pass buffer add, in the
+    /// same per-slot order, so draining reproduces the direct result bit for bit.
+    #[test]
+    fn log_and_dense_match_direct_splats() {
+        let (pixels, n) = (5, 3);
+        let mut direct = PassBuffer::new(pixels, n);
+        let mut chunk = ChunkSplats::new(pixels, n);
+        let mut via_chunk = PassBuffer::new(pixels, n);
+        let mut x = 0.37f32;
+        // 40 splats of 3 values: more than the 30 dense values, so the chunk goes dense.
+        for k in 0..40 {
+            x = (x * 7.13 + 0.11).fract();
+            let w = [x, 1.0 - x, 0.5];
+            let f = [2.0, x * 3.0, 1.5];
+            let layer = if k % 3 == 0 {
+                Layer::Surface
+            } else {
+                Layer::Medium
+            };
+            let pixel = k % pixels;
+            direct.splat(layer, pixel, &w, &f, 0.25);
+            chunk.splat(layer, pixel, &w, &f, 0.25);
+            if k == 7 {
+                assert!(!chunk.is_dense);
+            }
+        }
+        assert!(chunk.is_dense);
+        chunk.splat(Layer::Medium, 0, &[f32::NAN, 1.0, 1.0], &[1.0; 3], 1.0);
+        chunk.drain_into(&mut via_chunk);
+        assert_eq!(via_chunk.dropped, 1);
+        assert_eq!(direct.data, via_chunk.data);
+        // Drained and reset: a second use in log mode starts from zero.
+        assert!(chunk.dense.iter().all(|d| *d == 0.0));
+        let mut again = PassBuffer::new(pixels, n);
+        chunk.splat(Layer::Medium, 2, &[1.0; 3], &[2.0; 3], 1.0);
+        chunk.drain_into(&mut again);
+        assert_eq!(again.slot(Layer::Medium, 2), &[2.0, 2.0, 2.0]);
+        assert_eq!(again.data.iter().filter(|v| **v != 0.0).count(), 3);
+    }
+}
