@@ -90,6 +90,9 @@ pub fn light_pass(
                         gather,
                         norm,
                         buf: &mut sink,
+                        // NaN bits never equal a real origin's.
+                        origins: [([u32::MAX; 3], None); 8],
+                        next_origin: 0,
                     };
                     for _ in 0..rays {
                         tracer.trace(&mut rng);
@@ -148,6 +151,9 @@ struct ForwardTracer<'a> {
     gather: &'a Gather,
     norm: f32,
     buf: &'a mut ChunkSplats,
+    /// Recent emission origins (as bits) and their media.
+    origins: [([u32; 3], Option<u32>); 8],
+    next_origin: usize,
 }
 
 impl ForwardTracer<'_> {
@@ -170,7 +176,7 @@ impl ForwardTracer<'_> {
             return;
         }
         let mut class = CLASS_C;
-        let mut medium = scene.medium_at(ray.o);
+        let mut medium = self.medium_at(ray.o);
         let (mut depth, mut crossings) = (0, 0);
         while depth < scene.settings.max_depth && crossings < MAX_CROSSINGS {
             let hit = scene.geometry.intersect(&ray, f32::INFINITY);
@@ -237,6 +243,19 @@ impl ForwardTracer<'_> {
                 return;
             }
         }
+    }
+
+    /// `Scene::medium_at` through a few remembered origins: point and spot lights emit every
+    /// ray from the same point, so most lookups repeat one of a handful of answers.
+    fn medium_at(&mut self, p: Vec3) -> Option<u32> {
+        let key = p.to_array().map(f32::to_bits);
+        if let Some((_, m)) = self.origins.iter().find(|(k, _)| *k == key) {
+            return *m;
+        }
+        let m = self.scene.medium_at(p);
+        self.origins[self.next_origin] = (key, m);
+        self.next_origin = (self.next_origin + 1) % self.origins.len();
+        m
     }
 
     fn roulette(&mut self, flux: &mut Spectrum, flux0: f32, depth: u32, rng: &mut Rng) -> bool {

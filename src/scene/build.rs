@@ -304,6 +304,13 @@ impl Scene {
     /// The medium containing point `p`: found from the first boundary a ray from `p` meets
     /// (inside that shape if the ray leaves through it), else the scene's outside medium.
     pub fn medium_at(&self, p: Vec3) -> Option<u32> {
+        // Outside every shape's bounds nothing encloses p (e.g. a directional light's rays
+        // start there): no ray needed.
+        let b = self.geometry.bounds();
+        let (lo, hi) = (Vec3::from(b.min), Vec3::from(b.max));
+        if p.cmplt(lo).any() || p.cmpgt(hi).any() {
+            return self.outside_medium;
+        }
         // An irrational-ish direction avoids grazing axis-aligned edges.
         let d = Vec3::new(0.301, 0.812, 0.5).normalize();
         match self.geometry.intersect(&Ray { o: p, d }, f32::INFINITY) {
