@@ -307,7 +307,7 @@ impl Scene {
         // Outside every shape's bounds nothing encloses p (e.g. a directional light's rays
         // start there): no ray needed.
         let b = self.geometry.bounds();
-        let (lo, hi) = (Vec3::from(b.min), Vec3::from(b.max));
+        let (lo, hi) = (b.min, b.max);
         if p.cmplt(lo).any() || p.cmpgt(hi).any() {
             return self.outside_medium;
         }
