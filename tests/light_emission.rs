@@ -142,13 +142,20 @@ fn directional_light_irradiance_through_a_patch() {
     let geo = geometry();
     let dir = Vec3::new(0.3, -0.2, -1.0).normalize();
     let e = spec();
-    let l = Light::directional(dir, e);
+    let margin = 0.05;
+    let l = Light::directional(dir, e).with_beam_margin(margin);
     let frame = brume::geometry::sampling::Frame::new(dir);
     let b = geo.bounds();
-    let centre = b.centre();
-    let r = 0.5 * b.diagonal().length();
-    assert!((l.power(&geo)[3] - e[3] * PI * r * r).abs() < 1e-3 * e[3] * PI * r * r);
-    // A 1 m x 0.5 m patch on a plane normal to the light, offset from the beam centre.
+    let (lo, hi) = (b.min - Vec3::splat(margin), b.max + Vec3::splat(margin));
+    let ext = hi - lo;
+    // The beam covers exactly the silhouette of the grown bounding box: its area seen along
+    // the light is sum_i |d_i| (area of the face normal to axis i).
+    let silhouette =
+        dir.x.abs() * ext.y * ext.z + dir.y.abs() * ext.x * ext.z + dir.z.abs() * ext.x * ext.y;
+    assert!((l.power(&geo)[3] - e[3] * silhouette).abs() < 1e-4 * e[3] * silhouette);
+    // A 1 m x 0.5 m patch on a plane normal to the light, offset from the box centre but inside
+    // its silhouette.
+    let centre = 0.5 * (lo + hi);
     let patch_c = centre + frame.s * 0.7 - frame.t * 0.4;
     let (hw, hh) = (0.5f32, 0.25f32);
     let mut rng = Pcg64Mcg::seed_from_u64(902);
@@ -158,8 +165,15 @@ fn directional_light_irradiance_through_a_patch() {
     for _ in 0..n {
         let s = l.sample_emission(&geo, u4(&mut rng));
         assert!((s.ray.d - dir).length() < 1e-6);
-        // Starts before the scene: the whole scene lies ahead of every origin.
-        assert!((centre - s.ray.o).dot(dir) >= r);
+        // Starts outside the box and enters it: no ray is spent on empty space.
+        let inv = dir.recip();
+        let (t0, t1) = ((lo - s.ray.o) * inv, (hi - s.ray.o) * inv);
+        let (near, far) = (t0.min(t1).max_element(), t0.max(t1).min_element());
+        assert!(
+            near > 0.0 && far >= near - 1e-4,
+            "{:?} misses the box",
+            s.ray.o
+        );
         let t = (patch_c - s.ray.o).dot(dir);
         let q = s.ray.o + dir * t - patch_c;
         if q.dot(frame.s).abs() < hw && q.dot(frame.t).abs() < hh {
@@ -168,7 +182,7 @@ fn directional_light_irradiance_through_a_patch() {
         }
     }
     let area = 4.0 * hw * hh;
-    let frac = area as f64 / (PI * r * r) as f64;
+    let frac = area as f64 / silhouette as f64;
     assert!(z_of(k, n, frac).abs() < 4.0);
     for i in 0..NB {
         let irr = flux_sum[i] as f64 / n as f64 / area as f64;

@@ -1,5 +1,6 @@
 //! Light sources: total power, forward-ray sampling and (for area lights) emitted radiance.
 
+mod beam;
 mod light_set;
 mod spot;
 
@@ -10,6 +11,7 @@ use glam::{Vec2, Vec3};
 use crate::geometry::sampling::{Frame, concentric_disc, cosine_hemisphere, uniform_sphere};
 use crate::geometry::{Geometry, Hit, Ray};
 use crate::spectrum::Spectrum;
+use beam::Beam;
 
 pub use light_set::LightSet;
 pub use spot::SpotProfile;
@@ -24,10 +26,12 @@ pub struct EmissionSample {
 
 #[derive(Clone, Debug)]
 pub enum Light {
-    /// Parallel light travelling along `direction`; the beam is a disc covering the scene.
+    /// Parallel light travelling along `direction`; the beam covers the scene's bounding box
+    /// grown by `margin` on every side.
     Directional {
         direction: Vec3,
         irradiance: Spectrum,
+        margin: f32,
     },
     /// Isotropic point light.
     Point { position: Vec3, power: Spectrum },
@@ -53,16 +57,24 @@ pub enum Light {
     },
 }
 
-/// Extra distance the directional beam starts before the scene, so it never starts inside it.
-const BEAM_MARGIN: f32 = 1.01;
-
 impl Light {
     /// `direction` is where the light travels; `irradiance` is W/m^2/nm on a plane normal to it.
     pub fn directional(direction: Vec3, irradiance: Spectrum) -> Light {
         Light::Directional {
             direction: direction.normalize_or(Vec3::NEG_Z),
             irradiance,
+            margin: 0.0,
         }
+    }
+
+    /// Grows a directional beam by `margin` beyond the scene's bounds: integration volumes
+    /// reach up to their radius outside the geometry (open media, method note 8) and must see
+    /// the light that passes there. Other lights are returned unchanged.
+    pub fn with_beam_margin(mut self, m: f32) -> Light {
+        if let Light::Directional { margin, .. } = &mut self {
+            *margin = m.max(0.0);
+        }
+        self
     }
 
     /// `power`: total emitted W/nm per bin.
@@ -105,22 +117,26 @@ impl Light {
         }
     }
 
-    /// Centre and radius of the directional beam: the bounding sphere of the scene.
-    fn beam(geometry: &Geometry) -> (Vec3, f32) {
+    /// The directional beam: the silhouette of the scene's bounding box seen along
+    /// `direction`. Every beam ray meets the box, so no forward ray is spent on empty space
+    /// (a bounding-sphere disc wastes about 30 % of them on a cube).
+    fn beam(geometry: &Geometry, direction: Vec3, margin: f32) -> Beam {
         let b = geometry.bounds();
         if b.is_empty() {
-            return (Vec3::ZERO, 1.0);
+            return Beam::empty();
         }
-        (b.centre(), (0.5 * b.diagonal().length()).max(1e-6))
+        let m = Vec3::splat(margin);
+        Beam::new(b.min - m, b.max + m, direction)
     }
 
     /// Total emitted spectral power (W/nm per bin).
     pub fn power(&self, geometry: &Geometry) -> Spectrum {
         match self {
-            Light::Directional { irradiance, .. } => {
-                let (_, r) = Self::beam(geometry);
-                *irradiance * (PI * r * r)
-            }
+            Light::Directional {
+                irradiance,
+                direction,
+                margin,
+            } => *irradiance * Self::beam(geometry, *direction, *margin).area,
             Light::Point { power, .. } | Light::Spot { power, .. } | Light::Laser { power, .. } => {
                 *power
             }
@@ -141,14 +157,11 @@ impl Light {
         let (u0, u1) = (Vec2::new(u[0], u[1]), Vec2::new(u[2], u[3]));
         let flux = self.power(geometry);
         let ray = match self {
-            Light::Directional { direction, .. } => {
-                let (c, r) = Self::beam(geometry);
-                let f = Frame::new(*direction);
-                let d = concentric_disc(u0) * r;
-                Ray::new(
-                    c - *direction * (r * BEAM_MARGIN) + f.s * d.x + f.t * d.y,
-                    *direction,
-                )
+            Light::Directional {
+                direction, margin, ..
+            } => {
+                let o = Self::beam(geometry, *direction, *margin).sample(u0, u[2]);
+                Ray::new(o, *direction)
             }
             Light::Point { position, .. } => Ray::new(*position, uniform_sphere(u0)),
             Light::Spot {

@@ -238,7 +238,8 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             .unwrap_or(Vec3::NEG_Y);
         let power = unit * l.power.unwrap_or(0.0);
         lights.push(match l.kind {
-            LightKind::Directional => Light::directional(dir, unit * l.irradiance.unwrap_or(0.0)),
+            LightKind::Directional => Light::directional(dir, unit * l.irradiance.unwrap_or(0.0))
+                .with_beam_margin(d.integrator.radius),
             LightKind::Point => Light::point(pos, power),
             LightKind::Spot => Light::spot(
                 pos,
