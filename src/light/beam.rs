@@ -80,13 +80,13 @@ mod tests {
     /// |d_i| (one per visible face), and every sampled ray meets the cube from outside.
     #[test]
     fn cube_silhouette_area_and_entry() {
-        let d = Vec3::new(0.5, -0.5, -0.70710678).normalize();
+        let d = Vec3::new(0.5, -0.5, -std::f32::consts::FRAC_1_SQRT_2).normalize();
         let b = Beam::new(Vec3::splat(-0.5), Vec3::splat(0.5), d);
         let expect = d.x.abs() + d.y.abs() + d.z.abs();
         assert!((b.area - expect).abs() < 1e-6);
         for i in 0..1000 {
             let u = Vec2::new((i as f32 * 0.618).fract(), (i as f32 * 0.414).fract());
-            let o = b.sample(u, (i as f32 * 0.7071).fract());
+            let o = b.sample(u, (i as f32 * 0.7317).fract());
             // Outside the cube, and the ray o + t d enters it.
             assert!(o.abs().max_element() > 0.5);
             let inv = d.recip();
