@@ -73,13 +73,16 @@ def brume_render(
 
 
 class Mitsuba:
-    def __init__(self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float):
+    def __init__(
+        self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float, laser_r: float | None
+    ):
         import mitsuba as mi
 
         mi.set_variant(variant)
         self.mi = mi
         desc = tomllib.loads(scene.read_text())
         glossy = any(m.get("type") == "glossy" for m in desc.get("materials", {}).values())
+        self.laser_r = laser_r
         self.scene = mi.load_dict(self._dict(scene, chunk_spp, floor, drop))
         self.chunk = chunk_spp
         self.seed = 0
@@ -96,9 +99,8 @@ class Mitsuba:
             self.s_per_spp = (time.perf_counter() - t0) / (n * chunk_spp)
             print(f"mitsuba: native-floor cost {self.s_per_spp:.3f} s/spp ({n * chunk_spp} spp)", flush=True)
 
-    @staticmethod
-    def _dict(scene, spp, floor, drop):
-        d = mitsuba_scene.load(scene, spp, floor=floor)
+    def _dict(self, scene, spp, floor, drop):
+        d = mitsuba_scene.load(scene, spp, floor=floor, laser_radius=self.laser_r)
         for i in drop:
             d.pop(f"light{i}", None)
         return d
@@ -130,6 +132,23 @@ def mse(a: np.ndarray, b: np.ndarray, m: np.ndarray | None = None) -> float:
     return float(d[m].mean()) if m is not None else float(d.mean())
 
 
+def bin4(a: np.ndarray) -> np.ndarray:
+    """4 x 4 box average: the error at a scale where brume's radius blur (a few pixels) and
+    single-pixel speckle matter less."""
+    h, w = a.shape[0] // 4 * 4, a.shape[1] // 4 * 4
+    return a[:h, :w].reshape(h // 4, 4, w // 4, 4, -1).mean((1, 3))
+
+
+def errors(img: np.ndarray, ref: np.ndarray, away: np.ndarray, beam: np.ndarray) -> tuple:
+    """MSE over the whole image, away from the beam, in the beam, and of 4 x 4 bins."""
+    return (
+        mse(img, ref),
+        mse(img, ref, away),
+        mse(img, ref, beam) if beam.any() else 0.0,
+        mse(bin4(img), bin4(ref)),
+    )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", type=Path)
@@ -144,18 +163,26 @@ def main() -> None:
     ap.add_argument("--floor", choices=["exact", "builtin"], default="exact", help="Mitsuba's glossy floor: brume's BSDF as a Python plugin (timed as native) or roughplastic")
     ap.add_argument("--calib-seconds", type=float, default=10.0, help="time spent measuring Mitsuba's native-floor cost per spp")
     ap.add_argument("--drop-light", type=int, action="append", default=[], help="remove light N (0-based) in both renderers, e.g. the laser for a lamps-only agreement check")
+    ap.add_argument("--mitsuba-laser-radius", type=float, default=None, help="Mitsuba only: widen the laser's cone to this radius (m) at the far wall (an agreement check of the beam's scattered light; not the scene)")
+    ap.add_argument("--k", type=float, default=None, help="scale applied to Mitsuba's images against brume's reference (default: fitted without a laser; 1.0, the value the units give, with one)")
+    ap.add_argument("--brume-only", action="store_true", help="skip Mitsuba's ladder (pilots of brume settings against stored references; with --reuse-refs)")
+    ap.add_argument("--work", type=Path, default=None, help="folder of the EXRs and references (default <out>-work)")
     ap.add_argument("--reuse-refs", action="store_true", help="reuse the references in <out>-work/ if present (same scene and settings!)")
     ap.add_argument("--out", type=Path, required=True, help="prefix of the CSV, plot and JSON")
     a = ap.parse_args()
     a.out.parent.mkdir(parents=True, exist_ok=True)
-    work = a.out.parent / (a.out.name + "-work")
-    work.mkdir(exist_ok=True)
+    work = a.work or a.out.parent / (a.out.name + "-work")
+    work.mkdir(parents=True, exist_ok=True)
     desc = tomllib.loads(a.scene.read_text())
     drop_sets = [f"lights.{i}.power=1e-12" for i in a.drop_light]
     lights = desc.get("lights", [])
     lasers = [(i, l) for i, l in enumerate(lights) if l["type"] == "laser" and i not in a.drop_light]
 
-    mit = Mitsuba(a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds)
+    if a.brume_only and not a.reuse_refs:
+        ap.error("--brume-only needs --reuse-refs")
+    mit = None if a.brume_only else Mitsuba(
+        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius
+    )
 
     # References (cached with their times for --reuse-refs).
     meta_path = work / "refs.json"
@@ -185,30 +212,41 @@ def main() -> None:
     k = float(b_ref[away].sum() / m_ref[away].sum())
     k_rgb = (b_ref[away].sum(0) / m_ref[away].sum(0)).tolist()
     k_lsq = float(np.sum(b_ref[away] * m_ref[away]) / np.sum(m_ref[away] ** 2))
+    k_fit = k
+    if a.k is not None or lasers:
+        # With a laser, Mitsuba's reference misses most of the beam's scattered light even away
+        # from the beam, which biases the fit; the units make k = 1 (checked lamps-only).
+        k = a.k if a.k is not None else 1.0
 
     # Ladder.
     mean_ref = float(b_ref.mean())
     rows = []
+    img_m = {}  # Mitsuba's ladder images by row index
     b_var_ref = []  # estimates of brume's reference variance per pixel (whole image)
     for i, t in enumerate(a.times):
         img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", drop_sets + a.brume_set)
         f = 1.0 / (1.0 + bt / b_ref_t)  # share of the measured MSE that is the image's own noise
-        b_var_ref.append((mse(img, b_ref) * (1 - f), mse(img, b_ref, away) * (1 - f), mse(img, b_ref, beam) * (1 - f) if beam.any() else 0.0))
+        e = errors(img, b_ref, away, beam)
+        b_var_ref.append(tuple(x * (1 - f) for x in e))
         rows.append({
             "renderer": "brume", "budget_s": t, "measured_s": bt, "spp": "",
-            "_mse": (mse(img, b_ref) * f, mse(img, b_ref, away) * f, mse(img, b_ref, beam) * f if beam.any() else 0.0),
-            "own_away": np.sqrt(mse(img, b_ref, away) * f) / b_ref[away].mean(),
+            "_mse": tuple(x * f for x in e),
+            "own_away": np.sqrt(e[1] * f) / b_ref[away].mean(),
         })
+        if a.brume_only:
+            print(f"t={t:g}: brume {bt:.1f} s", flush=True)
+            continue
         img, mt, spp = mit.render(t)
         ff = 1.0 / (1.0 + spp / m_ref_spp)
+        img_m[len(rows)] = img
         rows.append({
             "renderer": "mitsuba", "budget_s": t, "measured_s": mt, "spp": spp,
-            "_raw": (mse(k * img, b_ref), mse(k * img, b_ref, away), mse(k * img, b_ref, beam) if beam.any() else 0.0),
+            "_raw": errors(k * img, b_ref, away, beam),
             "own_away": np.sqrt(mse(img, m_ref, away) * ff) / m_ref[away].mean(),
         })
         print(f"t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp)", flush=True)
     var_ref = np.mean(np.array(b_var_ref), axis=0)
-    for r in rows:
+    for i, r in enumerate(rows):
         if r["renderer"] == "mitsuba":
             if lasers:
                 r["_mse"] = tuple(max(x - v, 0.0) for x, v in zip(r["_raw"], var_ref))
@@ -216,8 +254,11 @@ def main() -> None:
                 # No laser: Mitsuba's own reference is trustworthy; measure it against that.
                 r["rel_rmse"] = r["rel_rmse_away"] = r["own_away"]
                 r["rel_rmse_beam"] = ""
+                e = errors(img_m[i], m_ref, away, beam)
+                r["rel_rmse_bin4"] = np.sqrt(e[3] / (1.0 + r["spp"] / m_ref_spp)) / m_ref.mean()
                 continue
-        whole, aw, bm = r["_mse"]
+        whole, aw, bm, b4 = r["_mse"]
+        r["rel_rmse_bin4"] = np.sqrt(b4) / mean_ref
         r["rel_rmse"] = np.sqrt(whole) / mean_ref
         r["rel_rmse_away"] = np.sqrt(aw) / b_ref[away].mean()
         r["rel_rmse_beam"] = np.sqrt(bm) / b_ref[beam].mean() if beam.any() else ""
@@ -240,9 +281,10 @@ def main() -> None:
     # Noise of each reference, away from the beam, from the ladders (own-reference errors).
     b_noise = np.sqrt(var_ref[1]) / b_ref[away].mean()
     m_rows = [r for r in rows if r["renderer"] == "mitsuba"]
-    m_noise = float(np.mean([r["own_away"] * np.sqrt(r["spp"] / m_ref_spp) for r in m_rows]))
+    m_noise = float(np.mean([r["own_away"] * np.sqrt(r["spp"] / m_ref_spp) for r in m_rows])) if m_rows else float("nan")
     agreement = {
-        "k_mitsuba_to_brume_fitted_away_from_beam": k,
+        "k_mitsuba_to_brume_fitted_away_from_beam": k_fit,
+        "k_used_for_errors": k,
         "k_per_channel_linear_srgb": k_rgb,
         "k_least_squares": k_lsq,
         "k_expected": 1.0,
@@ -258,16 +300,17 @@ def main() -> None:
         "mitsuba_ref_spp": m_ref_spp,
         "mitsuba_variant": a.variant,
         "mitsuba_floor": a.floor,
-        "mitsuba_native_floor_s_per_spp": mit.s_per_spp,
+        "mitsuba_native_floor_s_per_spp": mit.s_per_spp if mit else None,
         "brume_set": a.brume_set,
         "brume_ref_set": a.brume_ref_set,
         "dropped_lights": a.drop_light,
+        "mitsuba_laser_radius": a.mitsuba_laser_radius,
         "error_reference": "brume reference (Mitsuba x k), brume's reference noise removed" if lasers else "own reference",
     }
     (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
     print(json.dumps({x: y for x, y in agreement.items() if x != "region_means_linear_srgb_away_from_beam"}, indent=2), flush=True)
 
-    cols = ["renderer", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_away", "rel_rmse_beam", "own_away"]
+    cols = ["renderer", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "own_away"]
     csv_path = a.out.parent / (a.out.name + ".csv")
     with csv_path.open("w", newline="") as f:
         wr = csv.writer(f)
@@ -288,6 +331,8 @@ def plot(rows, path: Path, title: str, laser: bool) -> None:
     fig, ax = plt.subplots(figsize=(5, 3.6), dpi=110)
     for name, colour in (("brume", "C0"), ("mitsuba", "C1")):
         pts = [(r["measured_s"], r["rel_rmse"]) for r in rows if r["renderer"] == name]
+        if not pts:
+            continue
         ax.loglog(*zip(*pts), "o-", color=colour, label=name)
         if laser:
             pts = [(r["measured_s"], r["rel_rmse_away"]) for r in rows if r["renderer"] == name]

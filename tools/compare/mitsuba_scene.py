@@ -262,8 +262,12 @@ def _materials(mi, desc: dict, base: Path, floor: str) -> dict:
     return bsdfs
 
 
-def load(scene_path: Path, spp: int, overrides: dict | None = None, floor: str = "exact") -> dict:
-    """Returns the Mitsuba scene dict for `scene_path` (the variant must already be set)."""
+def load(
+    scene_path: Path, spp: int, overrides: dict | None = None, floor: str = "exact", laser_radius: float | None = None
+) -> dict:
+    """Returns the Mitsuba scene dict for `scene_path` (the variant must already be set).
+    `laser_radius` replaces the lasers' radius (a wider cone converges faster in Mitsuba: a
+    check of the light the beam scatters into the room, not the scene as specified)."""
     import mitsuba as mi
 
     desc = tomllib.loads(scene_path.read_text())
@@ -332,7 +336,8 @@ def load(scene_path: Path, spp: int, overrides: dict | None = None, floor: str =
                 norm = spot_norm(angle, soft)
             else:
                 length = beam_length(pos, dirn, desc)
-                cutoff = math.degrees(math.atan(float(l.get("radius", 1e-3)) / length))
+                radius = laser_radius if laser_radius is not None else float(l.get("radius", 1e-3))
+                cutoff = math.degrees(math.atan(radius / length))
                 beam = cutoff * (1 - 1e-6)
                 norm = 2 * math.pi * (1 - math.cos(math.radians(cutoff)))
             # Mitsuba's spot looks along local +Z; `up` only needs to be non-parallel.

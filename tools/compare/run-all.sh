@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Final equal-time comparisons with Mitsuba 3 (issue 9), both scenes, then the 60 s RMSE ratios.
+# Run from the repository root on an otherwise idle machine: about 35 minutes in all
+# (fog-cube ~9 min, fog-room-laser ~25 min: its Mitsuba renders use brume's floor BSDF as a
+# Python plugin, ~5x slower than the native-speed time Mitsuba is charged).
+# Environment: PYTHON (default .venv/bin/python, with tools/compare/requirements.txt),
+# BRUME (default target/release/brume), OUT (default docs/images).
+set -euo pipefail
+PYTHON=${PYTHON:-.venv/bin/python}
+BRUME=${BRUME:-target/release/brume}
+OUT=${OUT:-docs/images}
+HERE=$(dirname "$0")
+
+"$PYTHON" "$HERE/compare.py" scenes/fog-cube.toml --brume "$BRUME" \
+    --ref-seconds 120 --times 5 15 60 --out "$OUT/perf-fog-cube"
+
+# The room: brume's reference is the one both renderers are measured against (Mitsuba's does not
+# converge on the laser), so it gets 10x the longest ladder time. Mitsuba's own reference only
+# serves the agreement check away from the beam.
+"$PYTHON" "$HERE/compare.py" scenes/fog-room-laser.toml --brume "$BRUME" \
+    --ref-seconds 600 --mitsuba-ref-seconds 300 --times 5 15 60 --out "$OUT/perf-room"
+
+"$PYTHON" - "$OUT" <<'EOF'
+import csv, math, sys
+for name in ("perf-fog-cube", "perf-room"):
+    rows = list(csv.DictReader(open(f"{sys.argv[1]}/{name}.csv")))
+    at = {r["renderer"]: r for r in rows if float(r["budget_s"]) == 60}
+    # Each error rescaled to exactly 60 s with error ~ t^-1/2 (brume's --time runs whole passes).
+    e = {k: float(r["rel_rmse"]) * math.sqrt(float(r["measured_s"]) / 60) for k, r in at.items()}
+    e4 = {k: float(r["rel_rmse_bin4"]) * math.sqrt(float(r["measured_s"]) / 60) for k, r in at.items()}
+    print(f"{name}: 60 s relative RMSE brume {e['brume']:.4g}, mitsuba {e['mitsuba']:.4g}, "
+          f"ratio brume/mitsuba {e['brume'] / e['mitsuba']:.3f} "
+          f"(4x4-binned: {e4['brume'] / e4['mitsuba']:.3f})")
+EOF
