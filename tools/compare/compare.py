@@ -31,7 +31,8 @@ Method:
   `roughplastic` floor), measured once before the ladder: the cost of a native floor BSDF.
   `--floor builtin` renders with `roughplastic` instead and charges wall-clock time.
 - Outputs: <out>.csv, <out>.png (error vs time), <out>-agreement.json (k, region means, relative
-  RMSE between the references against what their noise predicts), <out>-work/ (the EXRs).
+  RMSE between the references against what their noise predicts), <out>-refs.png (brume's
+  reference | Mitsuba's | the beam mask), <out>-work/ (the EXRs).
 """
 
 from __future__ import annotations
@@ -307,6 +308,17 @@ def main() -> None:
         "mitsuba_laser_radius": a.mitsuba_laser_radius,
         "error_reference": "brume reference (Mitsuba x k), brume's reference noise removed" if lasers else "own reference",
     }
+    if lasers:
+        import beam_line_check
+
+        for who, ref in (("brume", b_ref), ("mitsuba", m_ref)):
+            tot, mean, se, n = beam_line_check.check(a.scene, ref)
+            agreement[f"beam_line_check_{who}_ref"] = {
+                "image_over_single_scattering_sum": tot,
+                "per_column_mean": mean,
+                "per_column_std_error": se,
+                "columns": n,
+            }
     (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
     print(json.dumps({x: y for x, y in agreement.items() if x != "region_means_linear_srgb_away_from_beam"}, indent=2), flush=True)
 
@@ -320,6 +332,23 @@ def main() -> None:
     for r in rows:
         print(", ".join(f"{c}={r[c]:.4g}" if isinstance(r[c], float) else f"{c}={r[c]}" for c in cols), flush=True)
     plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem, bool(lasers))
+    side_by_side(b_ref, k * m_ref, beam, a.out.parent / (a.out.name + "-refs.png"))
+
+
+def side_by_side(b: np.ndarray, m: np.ndarray, beam: np.ndarray, path: Path) -> None:
+    """brume's reference | Mitsuba's (times k) | brume's with the beam mask tinted, one exposure."""
+    from PIL import Image
+
+    s = 0.35 / max(float(np.median(b)), 1e-12)
+
+    def enc(x):
+        x = np.clip(np.maximum(x * s, 0.0), 0.0, 1.0)
+        return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+
+    tint = enc(b)
+    tint[beam] = 0.5 * tint[beam] + np.array([0.5, 0.0, 0.0])
+    row = np.concatenate([enc(b), enc(m), tint], axis=1)
+    Image.fromarray((row * 255 + 0.5).astype(np.uint8)).save(path)
 
 
 def plot(rows, path: Path, title: str, laser: bool) -> None:

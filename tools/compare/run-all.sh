@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Final equal-time comparisons with Mitsuba 3 (issue 9), both scenes, then the 60 s RMSE ratios.
-# Run from the repository root on an otherwise idle machine: about 35 minutes in all
+# Run from the repository root on an otherwise idle machine: about 40 minutes in all
 # (fog-cube ~9 min, fog-room-laser ~25 min: its Mitsuba renders use brume's floor BSDF as a
 # Python plugin, ~5x slower than the native-speed time Mitsuba is charged).
 # Environment: PYTHON (default .venv/bin/python, with tools/compare/requirements.txt),
@@ -20,10 +20,21 @@ HERE=$(dirname "$0")
 "$PYTHON" "$HERE/compare.py" scenes/fog-room-laser.toml --brume "$BRUME" \
     --ref-seconds 600 --mitsuba-ref-seconds 300 --times 5 15 60 --out "$OUT/perf-room"
 
+# brume with fewer forward rays per pass (more, shorter passes): the setting the 10 s pilots found
+# best in the room. Same references, brume's ladder only (~2 min).
+"$PYTHON" "$HERE/compare.py" scenes/fog-room-laser.toml --brume "$BRUME" \
+    --times 5 15 60 --brume-only --reuse-refs --work "$OUT/perf-room-work" \
+    --brume-set integrator.forward_rays=20000 --out "$OUT/perf-room-fwd20k"
+
 "$PYTHON" - "$OUT" <<'EOF'
 import csv, math, sys
-for name in ("perf-fog-cube", "perf-room"):
-    rows = list(csv.DictReader(open(f"{sys.argv[1]}/{name}.csv")))
+def rows_of(name):
+    return list(csv.DictReader(open(f"{sys.argv[1]}/{name}.csv")))
+for name, brume_from in (("perf-fog-cube", None), ("perf-room", None), ("perf-room", "perf-room-fwd20k")):
+    rows = rows_of(name)
+    if brume_from:
+        rows = [r for r in rows if r["renderer"] == "mitsuba"] + rows_of(brume_from)
+        name = f"{name} (brume from {brume_from})"
     at = {r["renderer"]: r for r in rows if float(r["budget_s"]) == 60}
     # Each error rescaled to exactly 60 s with error ~ t^-1/2 (brume's --time runs whole passes).
     e = {k: float(r["rel_rmse"]) * math.sqrt(float(r["measured_s"]) / 60) for k, r in at.items()}
