@@ -26,6 +26,13 @@ HERE=$(dirname "$0")
     --times 5 15 60 --brume-only --reuse-refs --work "$OUT/perf-room-work" \
     --brume-set integrator.forward_rays=20000 --out "$OUT/perf-room-fwd20k"
 
+# Optional (LAMPS_CHECK=1, ~15 min more): the room without its laser, where Mitsuba's reference
+# converges too, to check the translation and brume's lamps, floor and fog (k should be 1).
+if [[ "${LAMPS_CHECK:-0}" == 1 ]]; then
+    "$PYTHON" "$HERE/compare.py" scenes/fog-room-laser.toml --brume "$BRUME" --drop-light 3 \
+        --ref-seconds 300 --mitsuba-ref-seconds 400 --times 15 --out "$OUT/perf-room-lamps"
+fi
+
 "$PYTHON" - "$OUT" <<'EOF'
 import csv, math, sys
 def rows_of(name):
