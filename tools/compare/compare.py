@@ -16,6 +16,8 @@ Method:
   from the beam: least squares is pulled to 0 by fireflies) as a check.
 - Scenes without a laser (fog-cube): each renderer's error is against its own reference (the
   reference's own noise removed: MSE_true = MSE_measured / (1 + t / t_ref), variance ~ 1 / time).
+  With --brume-set, brume's variance per time differs from its reference's: if a run with the
+  reference's settings stored the reference's variance (refs.json), that is subtracted instead.
 - Scenes with a laser (fog-room-laser): Mitsuba's laser is a point spot with a 2 mm cone; next-event
   estimation reaches it only from path vertices inside that cone, so Mitsuba's reference does not
   converge on the beam nor on the light the beam scatters into the rest of the room (it is
@@ -224,15 +226,23 @@ def main() -> None:
     rows = []
     img_m = {}  # Mitsuba's ladder images by row index
     b_var_ref = []  # estimates of brume's reference variance per pixel (whole image)
+    same_settings = not a.brume_set
+    stored_var = None if same_settings else meta.get("brume_var_ref")
     for i, t in enumerate(a.times):
         img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", drop_sets + a.brume_set)
         f = 1.0 / (1.0 + bt / b_ref_t)  # share of the measured MSE that is the image's own noise
         e = errors(img, b_ref, away, beam)
         b_var_ref.append(tuple(x * (1 - f) for x in e))
+        if stored_var is not None:
+            # Other settings than the reference's: their variance per time differs, so remove the
+            # reference's variance measured by the run with the reference's own settings.
+            own = tuple(max(x - v, 0.0) for x, v in zip(e, stored_var))
+        else:
+            own = tuple(x * f for x in e)
         rows.append({
             "renderer": "brume", "budget_s": t, "measured_s": bt, "spp": "",
-            "_mse": tuple(x * f for x in e),
-            "own_away": np.sqrt(e[1] * f) / b_ref[away].mean(),
+            "_mse": own,
+            "own_away": np.sqrt(own[1]) / b_ref[away].mean(),
         })
         if a.brume_only:
             print(f"t={t:g}: brume {bt:.1f} s", flush=True)
@@ -247,6 +257,11 @@ def main() -> None:
         })
         print(f"t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp)", flush=True)
     var_ref = np.mean(np.array(b_var_ref), axis=0)
+    if same_settings:
+        meta["brume_var_ref"] = var_ref.tolist()
+        meta_path.write_text(json.dumps(meta, indent=2))
+    elif stored_var is not None:
+        var_ref = np.array(stored_var)
     for i, r in enumerate(rows):
         if r["renderer"] == "mitsuba":
             if lasers:
