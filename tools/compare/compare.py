@@ -2,22 +2,39 @@
 
 Usage (from the repository root, with the venv of tools/compare/requirements.txt):
   .venv/bin/python tools/compare/compare.py scenes/fog-cube.toml --brume target/release/brume \
-      --ref-seconds 120 --times 2 5 15 60 --out docs/images/perf-fog-cube
+      --ref-seconds 120 --times 5 15 60 --out docs/images/perf-fog-cube
+  .venv/bin/python tools/compare/compare.py scenes/fog-room-laser.toml --brume target/release/brume \
+      --ref-seconds 600 --mitsuba-ref-seconds 600 --times 5 15 60 --out docs/images/perf-room
 
 Method:
-- Each renderer renders a long reference (its own, --ref-seconds) and one image per ladder time
-  with a different seed. brume: `brume render --time T` (whole passes, so the real time runs a
-  little over T); Mitsuba: `mi.render` in chunks of spp, each with a new seed, until T has
-  elapsed. The recorded time is the measured wall-clock time (brume: the whole process,
-  including scene load; Mitsuba: rendering only, after one warm-up render, so scene loading
-  and set-up are not charged to it).
-- Error: relative RMSE = RMSE over pixels and linear-sRGB channels / mean of the reference. Each
-  renderer is measured against its own reference, so a scale difference between the two does
-  not enter; the reference's own noise is removed assuming variance proportional to 1/time:
-  MSE_true = MSE_measured / (1 + t / t_ref).
-- Agreement: the two references are compared after fitting one scalar k (least squares) to
-  Mitsuba's; k, the relative RMSE between the references, and the means of a few regions are
-  written to <out>-agreement.json.
+- Each renderer renders a long reference and one image per ladder time with a different seed.
+  brume: `brume render --time T` (whole passes, so the real time runs a little over T; the time
+  is the whole process, scene load included); Mitsuba: `mi.render` in chunks of spp with a new
+  seed each, after one untimed warm-up render.
+- Mitsuba's light spectra are brume's, in brume's units (mitsuba_scene.py), so the two images
+  should agree with scale k = 1; k is fitted between the references (ratio of their sums away
+  from the beam: least squares is pulled to 0 by fireflies) as a check.
+- Scenes without a laser (fog-cube): each renderer's error is against its own reference (the
+  reference's own noise removed: MSE_true = MSE_measured / (1 + t / t_ref), variance ~ 1 / time).
+  With --brume-set, brume's variance per time differs from its reference's: if a run with the
+  reference's settings stored the reference's variance (refs.json), that is subtracted instead.
+- Scenes with a laser (fog-room-laser): Mitsuba's laser is a point spot with a 2 mm cone; next-event
+  estimation reaches it only from path vertices inside that cone, so Mitsuba's reference does not
+  converge on the beam nor on the light the beam scatters into the rest of the room (it is
+  unbiased, but the variance sits in rare huge samples). The trustworthy reference for the whole
+  image is brume's, so both renderers are measured against brume's reference (Mitsuba's image
+  times k); brume's reference noise is removed from both with the variance brume's own ladder
+  measures. The CSV also holds, for each renderer, the error outside and inside the beam mask
+  (beam_mask.py), and Mitsuba's error against its own reference outside the mask (its noise
+  only, blind to the light it misses).
+- Glossy floor (room): Mitsuba renders brume's exact BSDF (brume_glossy.py, a Python plugin,
+  `--floor exact`). Python costs ~5x Mitsuba's native speed, which would be unfair to Mitsuba,
+  so Mitsuba's time is charged as spp x (seconds per spp of the same scene with the built-in
+  `roughplastic` floor), measured once before the ladder: the cost of a native floor BSDF.
+  `--floor builtin` renders with `roughplastic` instead and charges wall-clock time.
+- Outputs: <out>.csv, <out>.png (error vs time), <out>-agreement.json (k, region means, relative
+  RMSE between the references against what their noise predicts), <out>-refs.png (brume's
+  reference | Mitsuba's | the beam mask), <out>-work/ (the EXRs).
 """
 
 from __future__ import annotations
@@ -28,12 +45,14 @@ import json
 import subprocess
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
 import OpenEXR
 
 sys.path.insert(0, str(Path(__file__).parent))
+import beam_mask  # noqa: E402
 import mitsuba_scene  # noqa: E402
 
 
@@ -57,31 +76,80 @@ def brume_render(
 
 
 class Mitsuba:
-    def __init__(self, scene: Path, variant: str, chunk_spp: int):
+    def __init__(
+        self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float, laser_r: float | None
+    ):
         import mitsuba as mi
 
         mi.set_variant(variant)
         self.mi = mi
-        self.scene = mi.load_dict(mitsuba_scene.load(scene, chunk_spp))
+        desc = tomllib.loads(scene.read_text())
+        glossy = any(m.get("type") == "glossy" for m in desc.get("materials", {}).values())
+        self.laser_r = laser_r
+        self.scene = mi.load_dict(self._dict(scene, chunk_spp, floor, drop))
         self.chunk = chunk_spp
         self.seed = 0
-        self.render(0.0)  # warm-up (not timed)
+        self.render_wall(0.0)  # warm-up (not timed)
+        # Seconds per spp of a native floor BSDF, when the rendered one is the Python plugin.
+        self.s_per_spp = None
+        if floor == "exact" and glossy:
+            fast = mi.load_dict(self._dict(scene, chunk_spp, "builtin", drop))
+            mi.render(fast, spp=chunk_spp, seed=10**6)
+            n, t0 = 0, time.perf_counter()
+            while n == 0 or time.perf_counter() - t0 < calib_s:
+                mi.render(fast, spp=chunk_spp, seed=10**6 + 1 + n)
+                n += 1
+            self.s_per_spp = (time.perf_counter() - t0) / (n * chunk_spp)
+            print(f"mitsuba: native-floor cost {self.s_per_spp:.3f} s/spp ({n * chunk_spp} spp)", flush=True)
 
-    def render(self, seconds: float) -> tuple[np.ndarray, float, int]:
-        acc = None
-        chunks = 0
-        t0 = time.perf_counter()
+    def _dict(self, scene, spp, floor, drop):
+        d = mitsuba_scene.load(scene, spp, floor=floor, laser_radius=self.laser_r)
+        for i in drop:
+            d.pop(f"light{i}", None)
+        return d
+
+    def _chunk(self) -> np.ndarray:
+        self.seed += 1
+        return np.asarray(self.mi.render(self.scene, spp=self.chunk, seed=self.seed), dtype=np.float64)
+
+    def render_wall(self, seconds: float) -> tuple[np.ndarray, float, int]:
+        acc, chunks, t0 = None, 0, time.perf_counter()
         while acc is None or time.perf_counter() - t0 < seconds:
-            self.seed += 1
-            img = np.asarray(self.mi.render(self.scene, spp=self.chunk, seed=self.seed), dtype=np.float64)
+            img = self._chunk()
             acc = img if acc is None else acc + img
             chunks += 1
         return acc / chunks, time.perf_counter() - t0, chunks * self.chunk
 
+    def render(self, seconds: float) -> tuple[np.ndarray, float, int]:
+        """An image for a time budget: wall-clock, or spp-equivalent to a native floor BSDF."""
+        if self.s_per_spp is None:
+            return self.render_wall(seconds)
+        chunks = max(1, round(seconds / (self.s_per_spp * self.chunk)))
+        acc = sum(self._chunk() for _ in range(chunks))
+        spp = chunks * self.chunk
+        return acc / chunks, spp * self.s_per_spp, spp
 
-def rel_rmse(img: np.ndarray, ref: np.ndarray, t: float, t_ref: float) -> float:
-    mse = float(np.mean((img - ref) ** 2)) / (1.0 + t / t_ref)
-    return float(np.sqrt(mse) / np.mean(ref))
+
+def mse(a: np.ndarray, b: np.ndarray, m: np.ndarray | None = None) -> float:
+    d = (a - b) ** 2
+    return float(d[m].mean()) if m is not None else float(d.mean())
+
+
+def bin4(a: np.ndarray) -> np.ndarray:
+    """4 x 4 box average: the error at a scale where brume's radius blur (a few pixels) and
+    single-pixel speckle matter less."""
+    h, w = a.shape[0] // 4 * 4, a.shape[1] // 4 * 4
+    return a[:h, :w].reshape(h // 4, 4, w // 4, 4, -1).mean((1, 3))
+
+
+def errors(img: np.ndarray, ref: np.ndarray, away: np.ndarray, beam: np.ndarray) -> tuple:
+    """MSE over the whole image, away from the beam, in the beam, and of 4 x 4 bins."""
+    return (
+        mse(img, ref),
+        mse(img, ref, away),
+        mse(img, ref, beam) if beam.any() else 0.0,
+        mse(bin4(img), bin4(ref)),
+    )
 
 
 def main() -> None:
@@ -90,77 +158,234 @@ def main() -> None:
     ap.add_argument("--brume", default="target/release/brume")
     ap.add_argument("--variant", default="scalar_spectral")
     ap.add_argument("--chunk-spp", type=int, default=4)
-    ap.add_argument("--ref-seconds", type=float, default=120.0)
+    ap.add_argument("--ref-seconds", type=float, default=120.0, help="brume reference (and Mitsuba's, unless --mitsuba-ref-seconds)")
+    ap.add_argument("--mitsuba-ref-seconds", type=float, default=None, help="Mitsuba reference, wall-clock")
     ap.add_argument("--times", type=float, nargs="+", default=[2, 5, 15, 60])
-    ap.add_argument("--brume-set", action="append", default=[], help="brume --set override for the ladder (the reference keeps the scene's settings: only for settings that leave the expected image unchanged, e.g. integrator.q)")
+    ap.add_argument("--brume-set", action="append", default=[], help="brume --set KEY=VALUE for the ladder (repeatable); the reference keeps the scene's settings (plus --brume-ref-set)")
+    ap.add_argument("--brume-ref-set", action="append", default=[], help="brume --set KEY=VALUE for the reference only (repeatable)")
+    ap.add_argument("--floor", choices=["exact", "builtin"], default="exact", help="Mitsuba's glossy floor: brume's BSDF as a Python plugin (timed as native) or roughplastic")
+    ap.add_argument("--calib-seconds", type=float, default=10.0, help="time spent measuring Mitsuba's native-floor cost per spp")
+    ap.add_argument("--drop-light", type=int, action="append", default=[], help="remove light N (0-based) in both renderers, e.g. the laser for a lamps-only agreement check")
+    ap.add_argument("--mitsuba-laser-radius", type=float, default=None, help="Mitsuba only: widen the laser's cone to this radius (m) at the far wall (an agreement check of the beam's scattered light; not the scene)")
+    ap.add_argument("--k", type=float, default=None, help="scale applied to Mitsuba's images against brume's reference (default: fitted without a laser; 1.0, the value the units give, with one)")
+    ap.add_argument("--brume-only", action="store_true", help="skip Mitsuba's ladder (pilots of brume settings against stored references; with --reuse-refs)")
+    ap.add_argument("--work", type=Path, default=None, help="folder of the EXRs and references (default <out>-work)")
+    ap.add_argument("--reuse-refs", action="store_true", help="reuse the references in <out>-work/ if present (same scene and settings!)")
     ap.add_argument("--out", type=Path, required=True, help="prefix of the CSV, plot and JSON")
     a = ap.parse_args()
     a.out.parent.mkdir(parents=True, exist_ok=True)
-    work = a.out.parent / (a.out.name + "-work")
-    work.mkdir(exist_ok=True)
+    work = a.work or a.out.parent / (a.out.name + "-work")
+    work.mkdir(parents=True, exist_ok=True)
+    desc = tomllib.loads(a.scene.read_text())
+    drop_sets = [f"lights.{i}.power=1e-12" for i in a.drop_light]
+    lights = desc.get("lights", [])
+    lasers = [(i, l) for i, l in enumerate(lights) if l["type"] == "laser" and i not in a.drop_light]
 
-    mit = Mitsuba(a.scene, a.variant, a.chunk_spp)
-    b_ref, b_ref_t = brume_render(a.brume, a.scene, a.ref_seconds, 1000, work / "brume-ref.exr")
-    m_ref, m_ref_t, m_ref_spp = mit.render(a.ref_seconds)
-    mit.mi.util.write_bitmap(str(work / "mitsuba-ref.exr"), m_ref.astype(np.float32))
+    if a.brume_only and not a.reuse_refs:
+        ap.error("--brume-only needs --reuse-refs")
+    mit = None if a.brume_only else Mitsuba(
+        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius
+    )
+
+    # References (cached with their times for --reuse-refs).
+    meta_path = work / "refs.json"
+    meta = json.loads(meta_path.read_text()) if a.reuse_refs and meta_path.exists() else {}
+    if "brume" in meta:
+        b_ref, b_ref_t = read_rgb(work / "brume-ref.exr"), meta["brume"]["seconds"]
+    else:
+        b_ref, b_ref_t = brume_render(a.brume, a.scene, a.ref_seconds, 1000, work / "brume-ref.exr", drop_sets + a.brume_ref_set)
+        meta["brume"] = {"seconds": b_ref_t, "sets": drop_sets + a.brume_ref_set}
+    if "mitsuba" in meta:
+        m_ref, m_ref_t, m_ref_spp = read_rgb(work / "mitsuba-ref.exr"), meta["mitsuba"]["seconds"], meta["mitsuba"]["spp"]
+    else:
+        m_ref, m_ref_t, m_ref_spp = mit.render_wall(a.mitsuba_ref_seconds or a.ref_seconds)
+        mit.mi.util.write_bitmap(str(work / "mitsuba-ref.exr"), m_ref.astype(np.float32))
+        meta["mitsuba"] = {"seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor}
+    meta_path.write_text(json.dumps(meta, indent=2))
     print(f"references: brume {b_ref_t:.1f} s, mitsuba {m_ref_t:.1f} s ({m_ref_spp} spp)", flush=True)
 
-    k = float(np.sum(b_ref * m_ref) / np.sum(m_ref * m_ref))
     h, w, _ = b_ref.shape
-    regions = {
-        "whole": (0, w, 0, h),
-        "centre": (w * 3 // 8, w * 5 // 8, h * 3 // 8, h * 5 // 8),
-        "top-left": (0, w // 4, 0, h // 4),
-        "bottom-right": (w * 3 // 4, w, h * 3 // 4, h),
-    }
-    agreement = {
-        "k_mitsuba_to_brume": k,
-        "rel_rmse_between_references": rel_rmse(k * m_ref, b_ref, 0.0, 1.0),
-        "region_means_linear_srgb": {
-            name: {
-                "brume": b_ref[y0:y1, x0:x1].mean((0, 1)).tolist(),
-                "mitsuba_scaled": (k * m_ref[y0:y1, x0:x1]).mean((0, 1)).tolist(),
+    beam = np.zeros((h, w), dtype=bool)
+    for _, l in lasers:
+        length = mitsuba_scene.beam_length(l["position"], l["direction"], desc)
+        beam |= beam_mask.beam_mask(desc["camera"], l["position"], l["direction"], length)
+    away = ~beam
+    # Ratio of sums, not least squares: with heavy-tailed noise (fireflies in Mitsuba's image)
+    # least squares is pulled towards 0 by the largest samples.
+    k = float(b_ref[away].sum() / m_ref[away].sum())
+    k_rgb = (b_ref[away].sum(0) / m_ref[away].sum(0)).tolist()
+    k_lsq = float(np.sum(b_ref[away] * m_ref[away]) / np.sum(m_ref[away] ** 2))
+    k_fit = k
+    if a.k is not None or lasers:
+        # With a laser, Mitsuba's reference misses most of the beam's scattered light even away
+        # from the beam, which biases the fit; the units make k = 1 (checked lamps-only).
+        k = a.k if a.k is not None else 1.0
+
+    # Ladder.
+    mean_ref = float(b_ref.mean())
+    rows = []
+    img_m = {}  # Mitsuba's ladder images by row index
+    b_var_ref = []  # estimates of brume's reference variance per pixel (whole image)
+    same_settings = not a.brume_set
+    stored_var = None if same_settings else meta.get("brume_var_ref")
+    for i, t in enumerate(a.times):
+        img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", drop_sets + a.brume_set)
+        f = 1.0 / (1.0 + bt / b_ref_t)  # share of the measured MSE that is the image's own noise
+        e = errors(img, b_ref, away, beam)
+        b_var_ref.append(tuple(x * (1 - f) for x in e))
+        if stored_var is not None:
+            # Other settings than the reference's: their variance per time differs, so remove the
+            # reference's variance measured by the run with the reference's own settings.
+            own = tuple(max(x - v, 0.0) for x, v in zip(e, stored_var))
+        else:
+            own = tuple(x * f for x in e)
+        rows.append({
+            "renderer": "brume", "budget_s": t, "measured_s": bt, "spp": "",
+            "_mse": own,
+            "own_away": np.sqrt(own[1]) / b_ref[away].mean(),
+        })
+        if a.brume_only:
+            print(f"t={t:g}: brume {bt:.1f} s", flush=True)
+            continue
+        img, mt, spp = mit.render(t)
+        ff = 1.0 / (1.0 + spp / m_ref_spp)
+        img_m[len(rows)] = img
+        rows.append({
+            "renderer": "mitsuba", "budget_s": t, "measured_s": mt, "spp": spp,
+            "_raw": errors(k * img, b_ref, away, beam),
+            "own_away": np.sqrt(mse(img, m_ref, away) * ff) / m_ref[away].mean(),
+        })
+        print(f"t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp)", flush=True)
+    var_ref = np.mean(np.array(b_var_ref), axis=0)
+    if same_settings:
+        meta["brume_var_ref"] = var_ref.tolist()
+        meta_path.write_text(json.dumps(meta, indent=2))
+    elif stored_var is not None:
+        var_ref = np.array(stored_var)
+    for i, r in enumerate(rows):
+        if r["renderer"] == "mitsuba":
+            if lasers:
+                r["_mse"] = tuple(max(x - v, 0.0) for x, v in zip(r["_raw"], var_ref))
+            else:
+                # No laser: Mitsuba's own reference is trustworthy; measure it against that.
+                r["rel_rmse"] = r["rel_rmse_away"] = r["own_away"]
+                r["rel_rmse_beam"] = ""
+                e = errors(img_m[i], m_ref, away, beam)
+                r["rel_rmse_bin4"] = np.sqrt(e[3] / (1.0 + r["spp"] / m_ref_spp)) / m_ref.mean()
+                continue
+        whole, aw, bm, b4 = r["_mse"]
+        r["rel_rmse_bin4"] = np.sqrt(b4) / mean_ref
+        r["rel_rmse"] = np.sqrt(whole) / mean_ref
+        r["rel_rmse_away"] = np.sqrt(aw) / b_ref[away].mean()
+        r["rel_rmse_beam"] = np.sqrt(bm) / b_ref[beam].mean() if beam.any() else ""
+
+    # Agreement between the references, away from the beam.
+    regions = {}
+    for ty in range(3):
+        for tx in range(4):
+            y0, y1, x0, x1 = ty * h // 3, (ty + 1) * h // 3, tx * w // 4, (tx + 1) * w // 4
+            m = np.zeros((h, w), dtype=bool)
+            m[y0:y1, x0:x1] = True
+            m &= away
+            if m.sum() < 0.5 * (y1 - y0) * (x1 - x0):
+                continue
+            regions[f"tile r{ty} c{tx} (x {x0}-{x1}, y {y0}-{y1})"] = {
+                "brume": b_ref[m].mean(0).tolist(),
+                "mitsuba_times_k": (k * m_ref[m]).mean(0).tolist(),
             }
-            for name, (x0, x1, y0, y1) in regions.items()
-        },
+    between = np.sqrt(mse(k * m_ref, b_ref, away)) / b_ref[away].mean()
+    # Noise of each reference, away from the beam, from the ladders (own-reference errors).
+    b_noise = np.sqrt(var_ref[1]) / b_ref[away].mean()
+    m_rows = [r for r in rows if r["renderer"] == "mitsuba"]
+    m_noise = float(np.mean([r["own_away"] * np.sqrt(r["spp"] / m_ref_spp) for r in m_rows])) if m_rows else float("nan")
+    agreement = {
+        "k_mitsuba_to_brume_fitted_away_from_beam": k_fit,
+        "k_used_for_errors": k,
+        "k_per_channel_linear_srgb": k_rgb,
+        "k_least_squares": k_lsq,
+        "k_expected": 1.0,
+        "beam_mask_pixels": int(beam.sum()),
+        "rel_rmse_between_references_away_from_beam": float(between),
+        "predicted_from_reference_noise": float(np.hypot(b_noise, m_noise)),
+        "brume_ref_noise_rel": float(b_noise),
+        "mitsuba_ref_noise_rel_own": m_noise,
+        "region_means_linear_srgb_away_from_beam": regions,
+        "whole_image_means": {"brume": b_ref.mean((0, 1)).tolist(), "mitsuba_times_k": (k * m_ref).mean((0, 1)).tolist()},
         "brume_ref_seconds": b_ref_t,
         "mitsuba_ref_seconds": m_ref_t,
         "mitsuba_ref_spp": m_ref_spp,
         "mitsuba_variant": a.variant,
+        "mitsuba_floor": a.floor,
+        "mitsuba_native_floor_s_per_spp": mit.s_per_spp if mit else None,
+        "brume_set": a.brume_set,
+        "brume_ref_set": a.brume_ref_set,
+        "dropped_lights": a.drop_light,
+        "mitsuba_laser_radius": a.mitsuba_laser_radius,
+        "error_reference": "brume reference (Mitsuba x k), brume's reference noise removed" if lasers else "own reference",
     }
-    (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
-    print(json.dumps(agreement, indent=2), flush=True)
+    if lasers:
+        import beam_line_check
 
-    rows = []
-    for i, t in enumerate(a.times):
-        img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", a.brume_set)
-        rows.append(("brume", t, bt, "", rel_rmse(img, b_ref, bt, b_ref_t)))
-        img, mt, spp = mit.render(t)
-        rows.append(("mitsuba", t, mt, spp, rel_rmse(img, m_ref, mt, m_ref_t)))
-        print(rows[-2], rows[-1], flush=True)
+        for who, ref in (("brume", b_ref), ("mitsuba", m_ref)):
+            tot, mean, se, n = beam_line_check.check(a.scene, ref)
+            agreement[f"beam_line_check_{who}_ref"] = {
+                "image_over_single_scattering_sum": tot,
+                "per_column_mean": mean,
+                "per_column_std_error": se,
+                "columns": n,
+            }
+    (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
+    print(json.dumps({x: y for x, y in agreement.items() if x != "region_means_linear_srgb_away_from_beam"}, indent=2), flush=True)
+
+    cols = ["renderer", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "own_away"]
     csv_path = a.out.parent / (a.out.name + ".csv")
     with csv_path.open("w", newline="") as f:
         wr = csv.writer(f)
-        wr.writerow(["renderer", "budget_s", "measured_s", "spp", "rel_rmse"])
-        wr.writerows(rows)
-    plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem)
+        wr.writerow(cols[:-1] + ["rel_rmse_away_vs_own_ref"])
+        for r in rows:
+            wr.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in cols])
+    for r in rows:
+        print(", ".join(f"{c}={r[c]:.4g}" if isinstance(r[c], float) else f"{c}={r[c]}" for c in cols), flush=True)
+    plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem, bool(lasers))
+    side_by_side(b_ref, k * m_ref, beam, a.out.parent / (a.out.name + "-refs.png"))
 
 
-def plot(rows, path: Path, title: str) -> None:
+def side_by_side(b: np.ndarray, m: np.ndarray, beam: np.ndarray, path: Path) -> None:
+    """brume's reference | Mitsuba's (times k) | brume's with the beam mask tinted, one exposure."""
+    from PIL import Image
+
+    s = 0.35 / max(float(np.median(b)), 1e-12)
+
+    def enc(x):
+        x = np.clip(np.maximum(x * s, 0.0), 0.0, 1.0)
+        return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+
+    tint = enc(b)
+    tint[beam] = 0.5 * tint[beam] + np.array([0.5, 0.0, 0.0])
+    row = np.concatenate([enc(b), enc(m), tint], axis=1)
+    Image.fromarray((row * 255 + 0.5).astype(np.uint8)).save(path)
+
+
+def plot(rows, path: Path, title: str, laser: bool) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(5, 3.6), dpi=110)
-    for name in ("brume", "mitsuba"):
-        pts = [(r[2], r[4]) for r in rows if r[0] == name]
-        ax.loglog(*zip(*pts), "o-", label=name)
-    ax.set_xlabel("wall-clock seconds (2 shared cores)")
-    ax.set_ylabel("relative RMSE vs own reference")
+    for name, colour in (("brume", "C0"), ("mitsuba", "C1")):
+        pts = [(r["measured_s"], r["rel_rmse"]) for r in rows if r["renderer"] == name]
+        if not pts:
+            continue
+        ax.loglog(*zip(*pts), "o-", color=colour, label=name)
+        if laser:
+            pts = [(r["measured_s"], r["rel_rmse_away"]) for r in rows if r["renderer"] == name]
+            ax.loglog(*zip(*pts), "s--", color=colour, alpha=0.6, label=f"{name}, away from beam")
+    ax.set_xlabel("seconds (2 shared cores)")
+    ax.set_ylabel("relative RMSE vs brume's reference" if laser else "relative RMSE vs own reference")
     ax.set_title(f"{title}: error vs time")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path)
 
