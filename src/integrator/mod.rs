@@ -4,9 +4,11 @@ pub mod camera_pass;
 pub mod gather;
 pub mod light_pass;
 mod memory;
+pub mod oct;
 mod pass;
 pub mod record;
 pub mod rng;
+pub mod throughput;
 pub mod volume;
 
 pub use memory::MemoryEstimate;
