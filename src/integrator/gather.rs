@@ -174,6 +174,27 @@ impl Gather {
         self.extinction.get(m as usize).and_then(|x| x.as_ref())
     }
 
+    /// A sphere's weight without the camera throughput, times `k`: what `MultiSphereWalk::walk`
+    /// reported for it (`sigma_s,l e^{-(st_l - st_min) s} q / pdf_mix(s)`), recomputed from the
+    /// distance and the scalar the record keeps. One exp per bin, none in grey media.
+    #[inline]
+    pub fn sphere_weight(
+        &self,
+        med: &HomogeneousMedium,
+        seg: &SegmentRecord,
+        rec: &VolumeRecord,
+        k: f32,
+    ) -> Spectrum {
+        let mut w = med.sigma_s * (k * rec.scale);
+        if let Some(x) = self.relative_extinction(seg.medium) {
+            // Equal to `atten` for the finite distances spheres have, without its branch.
+            for l in 0..self.bins {
+                w.0[l] *= (-x.0[l] * rec.s).exp();
+            }
+        }
+        w
+    }
+
     /// Calls `f` for every surface record whose sphere contains `p`.
     #[inline]
     pub fn surfaces_at(&self, p: Vec3, mut f: impl FnMut(&SurfaceRecord)) {
@@ -230,5 +251,85 @@ impl Gather {
             + self.throughputs.len() * 4
             + cwbvh(&self.surface_bvh)
             + cwbvh(&self.volume_bvh)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::throughput::ThroughputTable;
+    use crate::medium::{ChannelPick, Mixture, MultiSphereWalk};
+    use rand::SeedableRng;
+
+    /// The stored layout (segment, distance, scalar) gives back the weight the walk computed
+    /// for every sphere, in a chromatic medium where the per-bin factors differ by orders of
+    /// magnitude along the segment.
+    #[test]
+    fn recomputed_sphere_weights_equal_the_walks() {
+        let n = 16;
+        let st: Vec<f32> = (0..n).map(|l| 0.2 + 0.25 * l as f32).collect();
+        let albedo: Vec<f32> = (0..n).map(|l| 0.3 + 0.04 * l as f32).collect();
+        let med = HomogeneousMedium::from_extinction_albedo(&st, &albedo, 0.3).unwrap();
+        assert!(!med.grey);
+        let mut w = Spectrum::ZERO;
+        for l in 0..n {
+            w.0[l] = 0.5 + ((l * 7) % 5) as f32 * 0.3;
+        }
+        let mix = Mixture::new(ChannelPick::Throughput, &w, &med, 0.1);
+        for q in [1.0, 0.3] {
+            let walk = MultiSphereWalk::new(q).unwrap();
+            let mut table = ThroughputTable::new(n);
+            let (mut segments, mut volumes, mut expected) = (Vec::new(), Vec::new(), Vec::new());
+            for i in 0..400u64 {
+                let seg_len = 1.0 + (i % 7) as f32 * 2.0;
+                let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
+                walk.walk(&med, &mix, seg_len, &mut rng, |s, ws| {
+                    expected.push((s, w * *ws))
+                });
+                let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
+                let segment = segments.len() as u32;
+                segments.push(SegmentRecord {
+                    origin: Vec3::new(i as f32, 0.0, 0.0),
+                    pixel: i as u32,
+                    dir: Vec3::Z,
+                    throughput: table.insert(w.as_slice(n)),
+                    medium: 0,
+                    shape: VolumeShape::Sphere,
+                    classes: 3,
+                });
+                walk.walk_scaled(&med, &mix, seg_len, &mut rng, |s, scale| {
+                    volumes.push(VolumeRecord { segment, s, scale })
+                });
+            }
+            assert_eq!(volumes.len(), expected.len());
+            assert!(volumes.len() > 300, "{} spheres", volumes.len());
+            assert_eq!(table.len(), 1, "one shared throughput");
+            let by_key: std::collections::HashMap<(u32, u32), Spectrum> = volumes
+                .iter()
+                .zip(&expected)
+                .map(|(v, &(s, ew))| {
+                    assert_eq!(v.s, s);
+                    ((v.segment, s.to_bits()), ew)
+                })
+                .collect();
+            let table = table.into_data();
+            let g = Gather::new(&[med], 0.01, Vec::new(), segments, volumes, table, n);
+            let mut worst = 0.0f32;
+            for rec in &g.volumes {
+                let seg = &g.segments[rec.segment as usize];
+                let got = Spectrum::from_slice(g.throughput(seg.throughput))
+                    * g.sphere_weight(&med, seg, rec, 1.0);
+                let want = by_key[&(rec.segment, rec.s.to_bits())];
+                for l in 0..n {
+                    let rel = (got.0[l] - want.0[l]).abs() / want.0[l].abs();
+                    worst = worst.max(rel);
+                }
+            }
+            eprintln!(
+                "q = {q}: {} spheres, worst relative error {worst:e}",
+                g.volumes.len()
+            );
+            assert!(worst < 1e-5, "q = {q}: {worst}");
+        }
     }
 }

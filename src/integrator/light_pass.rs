@@ -267,16 +267,8 @@ impl ForwardTracer<'_> {
                             return;
                         };
                         let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
-                        // The sphere's weight without the throughput (as `walk` reports it):
-                        // sigma_s e^{-(st - st_min) s} q / pdf_mix(s).
-                        let k = f * volume::track_length_density(&chord, radius) * rec.scale;
-                        let mut sw = med.sigma_s * k;
-                        if let Some(x) = gather.relative_extinction(seg.medium) {
-                            for l in 0..n {
-                                sw.0[l] *= (-x.0[l] * rec.s).exp();
-                            }
-                        }
-                        at * sw
+                        let k = f * volume::track_length_density(&chord, radius);
+                        at * gather.sphere_weight(med, seg, rec, k)
                     }
                     _ => {
                         let axis = volume::CameraAxis {
