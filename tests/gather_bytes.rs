@@ -8,7 +8,9 @@ use brume::integrator::gather::Gather;
 use brume::scene::{Scene, build, load_str};
 
 fn scene(file: &str, sets: &[&str]) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(file);
     let text = std::fs::read_to_string(&path).unwrap();
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     build(&load_str(&text, &path, &sets).unwrap()).unwrap()
@@ -58,6 +60,28 @@ fn fog_cube_gather_holds_at_most_64_bytes_per_sphere() {
         let (all, volume_part, volumes) = bytes_per_sphere(&s);
         assert!(volumes >= min_volumes, "q = {q}: only {volumes} volumes");
         assert!(all <= 64.0, "q = {q}: {all} bytes per sphere");
-        assert!(volume_part <= 64.0, "q = {q}: volume part {volume_part} bytes per sphere");
+        assert!(
+            volume_part <= 64.0,
+            "q = {q}: volume part {volume_part} bytes per sphere"
+        );
+    }
+}
+
+/// The figures for docs/performance.md (not a check):
+/// `cargo test --test gather_bytes -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn report_bytes_per_sphere() {
+    for (file, set) in [
+        ("fog-cube.toml", "integrator.q=1"),
+        ("fog-cube.toml", "integrator.q=0.1"),
+        ("fog-cube.toml", "integrator.q=0.03"),
+        ("fog-room-laser.toml", "integrator.q=1"),
+        ("fog-room-laser.toml", "integrator.q=0.1"),
+        ("chromatic-fog.toml", "integrator.q=1"),
+        ("chromatic-fog.toml", "integrator.q=0.1"),
+    ] {
+        eprint!("{file} {set}: ");
+        bytes_per_sphere(&scene(file, &[set]));
     }
 }

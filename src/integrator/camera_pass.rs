@@ -94,9 +94,10 @@ pub fn camera_mixture(scene: &Scene, w: &Spectrum, m: u32) -> Mixture {
 /// split into tiles never depends on the thread count.
 pub const ROW_BATCH: u32 = 8;
 
-/// Runs the camera pass of pass `pass` from row `first_row` on, until the gather records would
-/// exceed `budget_bytes` (at least one batch of rows). Rows are independent work items merged in
-/// row order. Returns the output and the first row not traced.
+/// Runs the camera pass of pass `pass` from row `first_row` on, until building the gather
+/// structure would need more than `budget_bytes` at its peak (at least one batch of rows). Rows
+/// are independent work items merged in row order (so are their throughput tables: indices do
+/// not depend on the thread count). Returns the output and the first row not traced.
 pub fn camera_pass(
     scene: &Scene,
     seed: u64,

@@ -14,6 +14,7 @@ use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 use obvhs::ray::Ray as BvhRay;
 
 use super::camera_pass::CameraOutput;
+use super::exp::exp_nonpositive;
 use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord, VolumeShape};
 use crate::medium::{HomogeneousMedium, relative_extinction};
 use crate::spectrum::Spectrum;
@@ -80,6 +81,23 @@ fn leaf_order<T: Copy>(bvh: &mut Option<CwBvh>, records: &mut Vec<T>) {
     }
 }
 
+/// Renumbers the segments in the order the (leaf-ordered) volumes first use them, so that a
+/// query's volumes read neighbouring segments too.
+fn segment_order(segments: &mut Vec<SegmentRecord>, volumes: &mut [VolumeRecord]) {
+    let mut new_index = vec![u32::MAX; segments.len()];
+    let mut ordered = Vec::with_capacity(segments.len());
+    for v in volumes.iter_mut() {
+        let i = v.segment as usize;
+        if new_index[i] == u32::MAX {
+            new_index[i] = ordered.len() as u32;
+            ordered.push(segments[i]);
+        }
+        v.segment = new_index[i];
+    }
+    // A segment without volumes (the camera pass records none) would be dropped here.
+    *segments = ordered;
+}
+
 /// Bounds of a volume: a sphere, or the capsule around a cylinder's axis.
 pub fn volume_aabb(seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
     let r = Vec3A::splat(radius);
@@ -104,7 +122,7 @@ impl Gather {
         media: &[HomogeneousMedium],
         radius: f32,
         mut surfaces: Vec<SurfaceRecord>,
-        segments: Vec<SegmentRecord>,
+        mut segments: Vec<SegmentRecord>,
         mut volumes: Vec<VolumeRecord>,
         throughputs: Vec<f32>,
         bins: usize,
@@ -132,6 +150,7 @@ impl Gather {
             .collect();
         leaf_order(&mut surface_bvh, &mut surfaces);
         leaf_order(&mut volume_bvh, &mut volumes);
+        segment_order(&mut segments, &mut volumes);
         Self {
             radius,
             surfaces,
@@ -187,9 +206,9 @@ impl Gather {
     ) -> Spectrum {
         let mut w = med.sigma_s * (k * rec.scale);
         if let Some(x) = self.relative_extinction(seg.medium) {
-            // Equal to `atten` for the finite distances spheres have, without its branch.
+            // The walk's `atten(x, s)` for the finite distances spheres have, vectorised.
             for l in 0..self.bins {
-                w.0[l] *= (-x.0[l] * rec.s).exp();
+                w.0[l] *= exp_nonpositive(-x.0[l] * rec.s);
             }
         }
         w
@@ -309,7 +328,7 @@ mod tests {
                 .zip(&expected)
                 .map(|(v, &(s, ew))| {
                     assert_eq!(v.s, s);
-                    ((v.segment, s.to_bits()), ew)
+                    ((segments[v.segment as usize].pixel, s.to_bits()), ew)
                 })
                 .collect();
             let table = table.into_data();
@@ -319,7 +338,7 @@ mod tests {
                 let seg = &g.segments[rec.segment as usize];
                 let got = Spectrum::from_slice(g.throughput(seg.throughput))
                     * g.sphere_weight(&med, seg, rec, 1.0);
-                let want = by_key[&(rec.segment, rec.s.to_bits())];
+                let want = by_key[&(seg.pixel, rec.s.to_bits())];
                 for l in 0..n {
                     let rel = (got.0[l] - want.0[l]).abs() / want.0[l].abs();
                     worst = worst.max(rel);

@@ -1,6 +1,7 @@
 //! The bidirectional engine: camera pass -> gather structure -> light pass -> film.
 
 pub mod camera_pass;
+mod exp;
 pub mod gather;
 pub mod light_pass;
 mod memory;
