@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use super::camera_pass::{MAX_CROSSINGS, camera_mixture};
 use super::gather::Gather;
-use super::record::{CLASS_C, CLASS_D, SegmentRecord, VolumeRecord, VolumeShape};
+use super::record::{CLASS_C, CLASS_D, VolumeShape};
 use super::rng::{self, Domain, Rng};
 use super::volume;
 use crate::film::{Layer, PassBuffer};
@@ -238,71 +238,58 @@ impl ForwardTracer<'_> {
         let norm = self.norm;
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
-        gather.volumes_along(
-            ray.o,
-            ray.d,
-            len,
-            |seg: &SegmentRecord, rec: &VolumeRecord| {
-                if seg.classes & class == 0 {
-                    return;
+        gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
+            if seg.classes & class == 0 {
+                return;
+            }
+            let same = seg.medium == seg_medium;
+            if !same && (seg.shape == VolumeShape::Long || !scene.open_medium(seg.medium as u32)) {
+                return;
+            }
+            // The record's own medium scatters the light towards the camera.
+            let med = &scene.media[seg.medium as usize];
+            // A grey flight's flux does not change along the segment: skip its survival weights.
+            let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
+            let fwd = flight.map(|f| f.mixture());
+            let f = med.phase.eval(-ray.d.dot(seg.dir));
+            let w = gather.throughput(seg.throughput);
+            let factor: Spectrum = match seg.shape {
+                VolumeShape::Sphere => {
+                    let centre = seg.at(rec.s);
+                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, centre, radius)
+                    else {
+                        return;
+                    };
+                    let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
+                    let k = f * volume::track_length_density(&chord, radius);
+                    at * gather.sphere_weight(med, seg, rec, k)
                 }
-                let same = seg.medium == seg_medium;
-                if !same
-                    && (seg.shape == VolumeShape::Long || !scene.open_medium(seg.medium as u32))
-                {
-                    return;
+                _ => {
+                    let axis = volume::CameraAxis {
+                        origin: seg.origin,
+                        dir: seg.dir,
+                        len: rec.s,
+                    };
+                    let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len)
+                    else {
+                        return;
+                    };
+                    let k = match (seg.shape, fwd) {
+                        (VolumeShape::Cylinder, Some(mix)) => {
+                            volume::cylinder_eq2_fwd(med, mix, &chord, radius)
+                        }
+                        (VolumeShape::Cylinder, None) => volume::cylinder_eq2(med, &chord, radius),
+                        (VolumeShape::Long, _) => volume::long_eq3_exact(med, &chord, radius),
+                        _ => {
+                            let cam =
+                                camera_mixture(scene, &Spectrum::from_slice(w), seg.medium as u32);
+                            volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
+                        }
+                    };
+                    *flux * k * f
                 }
-                // The record's own medium scatters the light towards the camera.
-                let med = &scene.media[seg.medium as usize];
-                // A grey flight's flux does not change along the segment: skip its survival weights.
-                let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
-                let fwd = flight.map(|f| f.mixture());
-                let f = med.phase.eval(-ray.d.dot(seg.dir));
-                let w = gather.throughput(seg.throughput);
-                let factor: Spectrum = match seg.shape {
-                    VolumeShape::Sphere => {
-                        let centre = seg.at(rec.s);
-                        let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, centre, radius)
-                        else {
-                            return;
-                        };
-                        let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
-                        let k = f * volume::track_length_density(&chord, radius);
-                        at * gather.sphere_weight(med, seg, rec, k)
-                    }
-                    _ => {
-                        let axis = volume::CameraAxis {
-                            origin: seg.origin,
-                            dir: seg.dir,
-                            len: rec.s,
-                        };
-                        let Some(chord) =
-                            volume::segment_cylinder(&axis, radius, ray.o, ray.d, len)
-                        else {
-                            return;
-                        };
-                        let k = match (seg.shape, fwd) {
-                            (VolumeShape::Cylinder, Some(mix)) => {
-                                volume::cylinder_eq2_fwd(med, mix, &chord, radius)
-                            }
-                            (VolumeShape::Cylinder, None) => {
-                                volume::cylinder_eq2(med, &chord, radius)
-                            }
-                            (VolumeShape::Long, _) => volume::long_eq3_exact(med, &chord, radius),
-                            _ => {
-                                let cam = camera_mixture(
-                                    scene,
-                                    &Spectrum::from_slice(w),
-                                    seg.medium as u32,
-                                );
-                                volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
-                            }
-                        };
-                        *flux * k * f
-                    }
-                };
-                buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
-            },
-        );
+            };
+            buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
+        });
     }
 }
