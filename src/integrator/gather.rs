@@ -206,9 +206,16 @@ impl Gather {
     ) -> Spectrum {
         let mut w = med.sigma_s * (k * rec.scale);
         if let Some(x) = self.relative_extinction(seg.medium) {
-            // The walk's `atten(x, s)` for the finite distances spheres have, vectorised.
-            for l in 0..self.bins {
-                w.0[l] *= exp_nonpositive(-x.0[l] * rec.s);
+            // The walk's `atten(x, s)` for the finite distances spheres have, in fixed blocks of
+            // 8 bins that the compiler vectorises (lanes past `bins` multiply zeros by 1).
+            let blocks = self.bins.div_ceil(8) * 8;
+            for (wb, xb) in w.0[..blocks]
+                .chunks_exact_mut(8)
+                .zip(x.0[..blocks].chunks_exact(8))
+            {
+                for (w, x) in wb.iter_mut().zip(xb) {
+                    *w *= exp_nonpositive(-x * rec.s);
+                }
             }
         }
         w
