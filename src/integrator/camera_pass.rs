@@ -378,8 +378,8 @@ impl<'a> CameraPath<'a> {
         match settings.volume {
             VolumeKind::Spheres => {
                 let this = &*self;
-                // The segment is recorded with its first sphere: most segments at q = 1
-                // leave none.
+                // The segment is recorded with its first sphere, so that one that leaves none
+                // (transmitted before its first sub-step) costs nothing.
                 let mut segment = None;
                 let end = scene.walk.walk_scaled(med, &mix, seg_len, rng, |s, scale| {
                     let segment = *segment

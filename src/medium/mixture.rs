@@ -63,7 +63,7 @@ pub fn relative_extinction(medium: &HomogeneousMedium) -> Spectrum {
 
 /// `e^{-k s}` that is 1 for k = 0 even when s is infinite.
 #[inline]
-pub fn atten(k: f32, s: f32) -> f32 {
+pub(crate) fn atten(k: f32, s: f32) -> f32 {
     if k == 0.0 { 1.0 } else { (-k * s).exp() }
 }
 
