@@ -5,41 +5,87 @@
 //! takes seconds and ~3 GB; set `BRUME_BENCH_1E7=0` to skip it.
 //!
 //! The sphere radius shrinks as N^(-1/2) (0.01 m at 1e5) so a 1 m segment meets ~31 spheres at
-//! every size: the query cost then measures traversal, not the number of hits.
+//! every size: the query cost then measures traversal, not the number of hits. Spheres lie on
+//! camera segments along -Z (the gather stores a segment once and a distance per sphere).
 
 use std::time::Instant;
 
 use brume::integrator::gather::Gather;
-use brume::integrator::record::{CLASS_ALL, VolumeRecord, VolumeShape};
+use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord, VolumeShape};
+use brume::medium::HomogeneousMedium;
+use brume::spectrum::Spectrum;
 use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, criterion_main};
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-/// Spectral bins per record, as in scenes/fog-cube.toml.
+/// Spectral bins per throughput, as in scenes/fog-cube.toml.
 const BINS: usize = 32;
 const QUERIES: usize = 1024;
+/// Spheres per camera segment in the timed cases (q = 0.1 in a 1 m fog of extinction 1 /m
+/// leaves about 6).
+const PER_SEGMENT: usize = 6;
 
 fn radius(n: usize) -> f32 {
     0.01 * (1e5 / n as f32).sqrt()
 }
 
-fn records(n: usize, seed: u64) -> (Vec<VolumeRecord>, Vec<f32>) {
+/// The records of a gather, for `Gather::new`.
+struct Records {
+    segments: Vec<SegmentRecord>,
+    volumes: Vec<VolumeRecord>,
+    throughputs: Vec<f32>,
+}
+
+/// `n` spheres uniform in the cube, `per_segment` of them on each camera segment (parallel to
+/// -Z, as from fog-cube's orthographic camera). `distinct`: every segment has a throughput of
+/// its own (the table's worst case); otherwise all share W = 1 (paths entering fog directly).
+fn records(n: usize, per_segment: usize, distinct: bool, seed: u64) -> Records {
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
-    let volumes = (0..n)
-        .map(|i| VolumeRecord {
-            start: Vec3::new(rng.random(), rng.random(), rng.random()) - Vec3::splat(0.5),
+    let segs = n.div_ceil(per_segment);
+    let segments = (0..segs)
+        .map(|i| SegmentRecord {
+            origin: Vec3::new(rng.random::<f32>() - 0.5, rng.random::<f32>() - 0.5, 0.5),
             pixel: (i % (128 * 128)) as u32,
             dir: Vec3::NEG_Z,
-            len: 0.0,
+            throughput: if distinct { i as u32 } else { 0 },
             medium: 0,
             shape: VolumeShape::Sphere,
             classes: CLASS_ALL,
-            weight: (i * BINS) as u32,
         })
         .collect();
-    let weights = (0..n * BINS).map(|i| 1.0 + (i % 7) as f32).collect();
-    (volumes, weights)
+    let volumes = (0..n)
+        .map(|i| VolumeRecord {
+            segment: (i / per_segment) as u32,
+            s: rng.random(),
+            scale: 1.0,
+        })
+        .collect();
+    let entries = if distinct { segs } else { 1 };
+    let throughputs = (0..entries * BINS).map(|i| 1.0 + (i % 7) as f32).collect();
+    Records {
+        segments,
+        volumes,
+        throughputs,
+    }
+}
+
+fn media() -> Vec<HomogeneousMedium> {
+    let s = Spectrum::splat(0.8, BINS);
+    let a = Spectrum::splat(0.2, BINS);
+    vec![HomogeneousMedium::new(&s, &a, 0.5, BINS).expect("valid medium")]
+}
+
+fn build(n: usize, r: Records) -> Gather {
+    Gather::new(
+        &media(),
+        radius(n),
+        Vec::new(),
+        r.segments,
+        r.volumes,
+        r.throughputs,
+        BINS,
+    )
 }
 
 /// Segments of 1 m from random points of the cube in random directions.
@@ -64,10 +110,11 @@ fn query_all(g: &Gather, segs: &[(Vec3, Vec3)]) -> (u64, u64) {
     let r2 = g.radius * g.radius;
     let (mut candidates, mut hits) = (0u64, 0u64);
     for &(o, d) in segs {
-        g.volumes_along(o, d, 1.0, |rec| {
+        g.volumes_along(o, d, 1.0, |seg, rec| {
             candidates += 1;
-            let t = (rec.start - o).dot(d).clamp(0.0, 1.0);
-            hits += ((o + d * t).distance_squared(rec.start) < r2) as u64;
+            let c = seg.at(rec.s);
+            let t = (c - o).dot(d).clamp(0.0, 1.0);
+            hits += ((o + d * t).distance_squared(c) < r2) as u64;
         });
     }
     (candidates, hits)
@@ -76,9 +123,8 @@ fn query_all(g: &Gather, segs: &[(Vec3, Vec3)]) -> (u64, u64) {
 fn report(n: usize, g: &Gather, build_s: Option<f64>) {
     let (c, h) = query_all(g, &segments());
     eprintln!(
-        "gather n={n:e}: {:.1} bytes/sphere ({} bins of weights), {:.1} candidates and {:.1} hits per query{}",
+        "gather n={n:e}: {:.1} bytes/sphere ({PER_SEGMENT} per segment, shared W), {:.1} candidates and {:.1} hits per query{}",
         g.bytes() as f64 / n as f64,
-        BINS,
         c as f64 / QUERIES as f64,
         h as f64 / QUERIES as f64,
         build_s.map_or(String::new(), |s| format!(
@@ -88,6 +134,22 @@ fn report(n: usize, g: &Gather, build_s: Option<f64>) {
     );
 }
 
+/// Bytes per sphere of the layouts a pass can produce: one sphere per segment (q = 1) or
+/// several, throughputs shared or all distinct.
+fn report_layouts(n: usize) {
+    for per_segment in [1, PER_SEGMENT, 30] {
+        for distinct in [false, true] {
+            let g = build(n, records(n, per_segment, distinct, 5));
+            eprintln!(
+                "gather n={n:e}: {per_segment:>2} spheres per segment, {} throughputs: {:.1} bytes/sphere (BVH {:.1})",
+                if distinct { "distinct" } else { "shared  " },
+                g.bytes() as f64 / n as f64,
+                g.bvh_nodes().1 as f64 * 80.0 / n as f64,
+            );
+        }
+    }
+}
+
 fn bench(c: &mut Criterion) {
     let segs = segments();
     let mut built = Vec::new();
@@ -95,17 +157,17 @@ fn bench(c: &mut Criterion) {
         let mut group = c.benchmark_group("gather_build");
         group.sample_size(10);
         for n in [100_000usize, 1_000_000] {
-            let (v, w) = records(n, n as u64);
             group.throughput(Throughput::Elements(n as u64));
             group.bench_function(BenchmarkId::from_parameter(n), |b| {
                 b.iter_batched(
-                    || (v.clone(), w.clone()),
-                    |(v, w)| Gather::new(radius(n), Vec::new(), v, w),
+                    || records(n, PER_SEGMENT, false, n as u64),
+                    |r| build(n, r),
                     criterion::BatchSize::LargeInput,
                 )
             });
-            let g = Gather::new(radius(n), Vec::new(), v, w);
+            let g = build(n, records(n, PER_SEGMENT, false, n as u64));
             report(n, &g, None);
+            report_layouts(n);
             built.push((n, g));
         }
     }
@@ -113,9 +175,9 @@ fn bench(c: &mut Criterion) {
     let benching = std::env::args().any(|a| a == "--bench");
     if benching && std::env::var("BRUME_BENCH_1E7").as_deref() != Ok("0") {
         let n = 10_000_000usize;
-        let (v, w) = records(n, n as u64);
+        let r = records(n, PER_SEGMENT, false, n as u64);
         let t = Instant::now();
-        let g = Gather::new(radius(n), Vec::new(), v, w);
+        let g = build(n, r);
         let s = t.elapsed().as_secs_f64();
         report(n, &g, Some(s));
         built.push((n, g));

@@ -5,8 +5,10 @@ use glam::Vec3;
 use rand::Rng as _;
 use rayon::prelude::*;
 
-use super::record::{CLASS_ALL, CLASS_C, SurfaceRecord, VolumeRecord, VolumeShape};
+use super::record::{CLASS_ALL, CLASS_C, SegmentRecord, SurfaceRecord, VolumeRecord, VolumeShape};
 use super::rng::{self, Domain, Rng};
+use super::throughput::ThroughputTable;
+use super::{gather, oct::Oct};
 use crate::film::{Layer, PassBuffer};
 use crate::geometry::{Hit, Ray, spawn};
 use crate::medium::{ChannelPick, Mixture, WalkEnd, sample_extinction};
@@ -18,8 +20,11 @@ use crate::spectrum::Spectrum;
 #[derive(Default)]
 pub struct CameraOutput {
     pub surfaces: Vec<SurfaceRecord>,
+    /// Camera segments in media that left volumes; `volumes` point into it.
+    pub segments: Vec<SegmentRecord>,
     pub volumes: Vec<VolumeRecord>,
-    pub weights: Vec<f32>,
+    /// Distinct camera throughputs, shared by the records.
+    pub throughputs: ThroughputTable,
     /// Radiance seen directly (emitters), per pixel of the batch: (pixel, value).
     pub direct: Vec<(u32, Spectrum)>,
     /// Camera paths started.
@@ -27,43 +32,72 @@ pub struct CameraOutput {
 }
 
 impl CameraOutput {
-    fn push_weight(&mut self, w: &Spectrum, n: usize) -> u32 {
-        let at = self.weights.len() as u32;
-        self.weights.extend_from_slice(w.as_slice(n));
-        at
+    /// An empty output for spectra of `n` bins.
+    pub fn new(n: usize) -> Self {
+        Self {
+            throughputs: ThroughputTable::new(n),
+            ..Self::default()
+        }
     }
 
-    /// Memory the gather structure built from these records will take (records, weights,
-    /// and about two BVH nodes per record).
+    /// Memory the gather structure built from these records will hold (`Gather::bytes()`,
+    /// with the BVHs at their measured bytes per primitive).
     pub fn gather_bytes(&self) -> usize {
-        let node = std::mem::size_of::<obvhs::bvh2::node::Bvh2Node>();
-        let records = self.surfaces.len() + self.volumes.len();
+        let prims = self.surfaces.len() + self.volumes.len();
         self.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
+            + self.segments.len() * std::mem::size_of::<SegmentRecord>()
             + self.volumes.len() * std::mem::size_of::<VolumeRecord>()
-            + self.weights.len() * 4
-            + records * (2 * node + 4)
+            + self.throughputs.data_bytes()
+            + prims * gather::BVH_BYTES_PER_PRIM
     }
 
-    /// Appends `other`, rebasing its weight offsets.
+    /// Peak memory while the gather is built: what it keeps, plus the binary BVH and the
+    /// boxes the wide BVHs are converted from (freed before the light pass).
+    pub fn peak_bytes(&self) -> usize {
+        let prims = self.surfaces.len() + self.volumes.len();
+        self.gather_bytes() + prims * gather::BUILD_BYTES_PER_PRIM
+    }
+
+    /// Appends `other`, rebasing its segment and throughput indices.
     pub fn append(&mut self, mut other: CameraOutput) {
-        let base = self.weights.len() as u32;
-        other.surfaces.iter_mut().for_each(|s| s.weight += base);
-        other.volumes.iter_mut().for_each(|v| v.weight += base);
+        let remap = self.throughputs.merge(&other.throughputs);
+        let base = self.segments.len() as u32;
+        other
+            .surfaces
+            .iter_mut()
+            .for_each(|s| s.throughput = remap[s.throughput as usize]);
+        other
+            .segments
+            .iter_mut()
+            .for_each(|s| s.throughput = remap[s.throughput as usize]);
+        other.volumes.iter_mut().for_each(|v| v.segment += base);
         self.surfaces.append(&mut other.surfaces);
+        self.segments.append(&mut other.segments);
         self.volumes.append(&mut other.volumes);
-        self.weights.append(&mut other.weights);
         self.direct.append(&mut other.direct);
         self.paths += other.paths;
     }
+}
+
+/// The camera segment's spectral mixture in medium `m` for throughput `w`, with the scene's
+/// channel pick and floor. The light pass rebuilds truncated cylinders' P with it.
+pub fn camera_mixture(scene: &Scene, w: &Spectrum, m: u32) -> Mixture {
+    let s = &scene.settings;
+    let pick = match s.channel_pick {
+        ChannelPickDesc::Throughput => ChannelPick::Throughput,
+        ChannelPickDesc::Uniform => ChannelPick::Uniform,
+    };
+    Mixture::new(pick, w, &scene.media[m as usize], s.channel_floor)
 }
 
 /// Rows traced together before the memory budget is checked: fixed, so that where a pass is
 /// split into tiles never depends on the thread count.
 pub const ROW_BATCH: u32 = 8;
 
-/// Runs the camera pass of pass `pass` from row `first_row` on, until the gather records would
-/// exceed `budget_bytes` (at least one batch of rows). Rows are independent work items merged in
-/// row order. Returns the output and the first row not traced.
+/// Runs the camera pass of pass `pass` from row `first_row` on, until building the gather
+/// structure would need more than `budget_bytes` at its peak (at least one batch of rows). Rows
+/// are independent work items merged in row order (so are their throughput tables: indices do
+/// not depend on the thread count). Returns the output and the first row not traced.
 pub fn camera_pass(
     scene: &Scene,
     seed: u64,
@@ -72,14 +106,15 @@ pub fn camera_pass(
     budget_bytes: usize,
 ) -> (CameraOutput, u32) {
     let (w, h) = scene.camera.resolution();
-    let mut all = CameraOutput::default();
+    let n = scene.grid.n;
+    let mut all = CameraOutput::new(n);
     let mut row = first_row;
     while row < h {
         let end = (row + ROW_BATCH).min(h);
         let rows: Vec<CameraOutput> = (row..end)
             .into_par_iter()
             .map(|y| {
-                let mut out = CameraOutput::default();
+                let mut out = CameraOutput::new(n);
                 let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
                 for x in 0..w {
                     let pixel = y * w + x;
@@ -98,7 +133,7 @@ pub fn camera_pass(
             all.append(r);
         }
         row = end;
-        if all.gather_bytes() > budget_bytes {
+        if all.peak_bytes() > budget_bytes {
             break;
         }
     }
@@ -257,16 +292,16 @@ impl<'a> CameraPath<'a> {
             } else {
                 -hit.ns
             };
-            let weight = out.push_weight(&(self.w * (1.0 / pd)), self.n);
+            let throughput = out.throughputs.insert(self.w.as_slice(self.n));
             out.surfaces.push(SurfaceRecord {
                 p: hit.p,
                 pixel: self.pixel,
-                n,
-                material: mat_id,
-                wo,
+                n: Oct::encode(n),
+                wo: Oct::encode(wo),
                 shape: hit.shape,
                 uv: hit.uv,
-                weight,
+                throughput,
+                scale: 1.0 / pd,
             });
             return Bounce::Stop;
         }
@@ -286,48 +321,36 @@ impl<'a> CameraPath<'a> {
     }
 
     fn mixture(&self, m: u32) -> Mixture {
-        let s = &self.scene.settings;
-        let pick = match s.channel_pick {
-            ChannelPickDesc::Throughput => ChannelPick::Throughput,
-            ChannelPickDesc::Uniform => ChannelPick::Uniform,
-        };
-        Mixture::new(
-            pick,
-            &self.w,
-            &self.scene.media[m as usize],
-            s.channel_floor,
-        )
+        camera_mixture(self.scene, &self.w, m)
     }
 
-    /// Leaves an integration volume of `shape` on the camera ray in medium `m`, starting at
-    /// `start` and `len` long (0 for spheres), with spectral weight `w` (and `extra` weights).
-    fn volume(
-        &self,
-        out: &mut CameraOutput,
-        m: u32,
-        ray: &Ray,
-        (start, len, shape): (Vec3, f32, VolumeShape),
-        w: &Spectrum,
-        extra: Option<&Spectrum>,
-    ) {
-        let dir = ray.d;
-        let weight = out.push_weight(w, self.n);
-        if let Some(e) = extra {
-            out.push_weight(e, self.n);
-        }
+    /// Records the camera segment along `ray` in medium `m` that leaves volumes of `shape`,
+    /// with the current throughput.
+    fn segment(&self, out: &mut CameraOutput, m: u32, ray: &Ray, shape: VolumeShape) -> u32 {
         let classes = match self.scene.settings.mode {
             GatherMode::FirstExtinction => CLASS_ALL,
             GatherMode::SeeThrough => CLASS_C,
         };
-        out.volumes.push(VolumeRecord {
-            start,
+        let throughput = out.throughputs.insert(self.w.as_slice(self.n));
+        out.segments.push(SegmentRecord {
+            origin: ray.o,
             pixel: self.pixel,
-            dir,
-            len,
+            dir: ray.d,
+            throughput,
             medium: m as u16,
             shape,
             classes,
-            weight,
+        });
+        out.segments.len() as u32 - 1
+    }
+
+    /// A cylinder over the first `len` metres of the segment along `ray`.
+    fn cylinder(&self, out: &mut CameraOutput, m: u32, ray: &Ray, len: f32, shape: VolumeShape) {
+        let segment = self.segment(out, m, ray, shape);
+        out.volumes.push(VolumeRecord {
+            segment,
+            s: len,
+            scale: 1.0,
         });
     }
 
@@ -355,10 +378,13 @@ impl<'a> CameraPath<'a> {
         match settings.volume {
             VolumeKind::Spheres => {
                 let this = &*self;
-                let end = scene.walk.walk(med, &mix, seg_len, rng, |s, w| {
-                    let w = this.w * *w;
-                    let place = (ray.o + ray.d * s, 0.0, VolumeShape::Sphere);
-                    this.volume(out, m, ray, place, &w, None);
+                // The segment is recorded with its first sphere, so that one that leaves none
+                // (transmitted before its first sub-step) costs nothing.
+                let mut segment = None;
+                let end = scene.walk.walk_scaled(med, &mix, seg_len, rng, |s, scale| {
+                    let segment = *segment
+                        .get_or_insert_with(|| this.segment(out, m, ray, VolumeShape::Sphere));
+                    out.volumes.push(VolumeRecord { segment, s, scale });
                 });
                 self.after_walk(end, first_extinction)
             }
@@ -368,8 +394,7 @@ impl<'a> CameraPath<'a> {
                 } else {
                     VolumeShape::Long
                 };
-                let w = self.w;
-                self.volume(out, m, ray, (ray.o, seg_len, shape), &w, None);
+                self.cylinder(out, m, ray, seg_len, shape);
                 if first_extinction {
                     self.w *= med.sigma_t.transmittance(seg_len, self.n);
                     Segment::Reached
@@ -383,9 +408,7 @@ impl<'a> CameraPath<'a> {
                     WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => s,
                     WalkEnd::Transmitted { .. } => seg_len,
                 };
-                let w = self.w;
-                let place = (ray.o, len, VolumeShape::Truncated);
-                self.volume(out, m, ray, place, &w, Some(mix.probabilities()));
+                self.cylinder(out, m, ray, len, VolumeShape::Truncated);
                 self.after_walk(end, first_extinction)
             }
         }

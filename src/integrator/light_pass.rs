@@ -10,15 +10,15 @@ use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use glam::Vec3;
 use rand::Rng as _;
 
-use super::camera_pass::MAX_CROSSINGS;
+use super::camera_pass::{MAX_CROSSINGS, camera_mixture};
 use super::gather::Gather;
-use super::record::{CLASS_C, CLASS_D, VolumeRecord, VolumeShape};
+use super::record::{CLASS_C, CLASS_D, VolumeShape};
 use super::rng::{self, Domain, Rng};
 use super::volume;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray, spawn};
 use crate::material::LobeKind;
-use crate::medium::{FlightEnd, ForwardFlight, Mixture};
+use crate::medium::{FlightEnd, ForwardFlight};
 use crate::scene::Scene;
 use crate::spectrum::Spectrum;
 
@@ -282,21 +282,25 @@ impl ForwardTracer<'_> {
         };
         let inv_area = 1.0 / (PI * gather.radius * gather.radius);
         gather.surfaces_at(hit.p, |rec| {
+            let rn = rec.n.decode();
             // Same side of the same surface as the camera path's hit.
-            if rec.n.dot(wi) <= 0.0 || rec.n.dot(ng) < 0.5 {
+            if rn.dot(wi) <= 0.0 || rn.dot(ng) < 0.5 {
                 return;
             }
+            let Some(mat) = scene.geometry.shape(rec.shape).material else {
+                return;
+            };
             let at = Hit {
                 t: 0.0,
                 p: rec.p,
-                ng: rec.n,
-                ns: rec.n,
+                ng: rn,
+                ns: rn,
                 uv: rec.uv,
                 shape: rec.shape,
             };
-            let f = scene.materials[rec.material as usize].eval_diffuse(rec.wo, wi, &at);
-            let factor = f * *flux * inv_area;
-            let w = gather.weight(rec.weight, n);
+            let f = scene.materials[mat as usize].eval_diffuse(rec.wo.decode(), wi, &at);
+            let factor = f * *flux * (inv_area * rec.scale);
+            let w = gather.throughput(rec.throughput);
             let norm = self.norm;
             self.buf
                 .splat(Layer::Surface, rec.pixel as usize, w, &factor.0[..n], norm);
@@ -322,56 +326,58 @@ impl ForwardTracer<'_> {
         let norm = self.norm;
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
-        gather.volumes_along(ray.o, ray.d, len, |rec: &VolumeRecord| {
-            if rec.classes & class == 0 {
+        gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
+            if seg.classes & class == 0 {
                 return;
             }
-            let same = rec.medium == seg_medium;
-            if !same && (rec.shape == VolumeShape::Long || !scene.open_medium(rec.medium as u32)) {
+            let same = seg.medium == seg_medium;
+            if !same && (seg.shape == VolumeShape::Long || !scene.open_medium(seg.medium as u32)) {
                 return;
             }
             // The record's own medium scatters the light towards the camera.
-            let med = &scene.media[rec.medium as usize];
+            let med = &scene.media[seg.medium as usize];
             // A grey flight's flux does not change along the segment: skip its survival weights.
             let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
             let fwd = flight.map(|f| f.mixture());
-            let f = med.phase.eval(-ray.d.dot(rec.dir));
-            let factor: Spectrum = match rec.shape {
+            let f = med.phase.eval(-ray.d.dot(seg.dir));
+            let w = gather.throughput(seg.throughput);
+            let factor: Spectrum = match seg.shape {
                 VolumeShape::Sphere => {
-                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, rec.start, radius)
+                    let centre = seg.at(rec.s);
+                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, centre, radius)
                     else {
                         return;
                     };
                     let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
-                    at * (f * volume::track_length_density(&chord, radius))
+                    let k = f * volume::track_length_density(&chord, radius);
+                    at * gather.sphere_weight(med, seg, rec, k)
                 }
                 _ => {
                     let axis = volume::CameraAxis {
-                        origin: rec.start,
-                        dir: rec.dir,
-                        len: rec.len,
+                        origin: seg.origin,
+                        dir: seg.dir,
+                        len: rec.s,
                     };
                     let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len)
                     else {
                         return;
                     };
-                    let k = match (rec.shape, fwd) {
+                    let k = match (seg.shape, fwd) {
                         (VolumeShape::Cylinder, Some(mix)) => {
                             volume::cylinder_eq2_fwd(med, mix, &chord, radius)
                         }
                         (VolumeShape::Cylinder, None) => volume::cylinder_eq2(med, &chord, radius),
                         (VolumeShape::Long, _) => volume::long_eq3_exact(med, &chord, radius),
                         _ => {
-                            let p = Spectrum::from_slice(gather.weight(rec.weight + n as u32, n));
-                            let cam = Mixture::from_probabilities(&p, med);
+                            let cam =
+                                camera_mixture(scene, &Spectrum::from_slice(w), seg.medium as u32);
                             volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
                         }
                     };
                     *flux * k * f
                 }
             };
-            let w = gather.weight(rec.weight, n);
-            buf.splat(Layer::Medium, rec.pixel as usize, w, &factor.0[..n], norm);
+            buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
         });
     }
 }

@@ -1,8 +1,14 @@
+use super::gather::BVH_BYTES_PER_PRIM;
+use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord};
 use crate::scene::desc::{SceneDesc, VolumeKind};
 
-/// Bytes of one gather record excluding its spectral weight (position, pixel, frame, radius
-/// and its share of the BVH).
-pub const GATHER_RECORD_BYTES: f64 = 64.0;
+/// Bytes of one integration volume or surface sphere excluding its segment and throughput:
+/// its record and its share of the BVH.
+pub const GATHER_RECORD_BYTES: f64 =
+    (std::mem::size_of::<VolumeRecord>() + BVH_BYTES_PER_PRIM) as f64;
+/// Bytes of the segment record that a path's volumes share.
+const PATH_BYTES: f64 = std::mem::size_of::<SegmentRecord>() as f64;
+const SURFACE_BYTES: f64 = (std::mem::size_of::<SurfaceRecord>() + BVH_BYTES_PER_PRIM) as f64;
 
 /// What a render of a scene is expected to hold in memory, per pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -14,7 +20,8 @@ pub struct MemoryEstimate {
 
 impl MemoryEstimate {
     /// An upper estimate: every camera path reaches a medium segment thick enough to hold its
-    /// full expected 1/q spheres (method note 2); surfaces add one sphere per path.
+    /// full expected 1/q spheres (method note 2); surfaces add one sphere per path; no two
+    /// paths share a throughput (the worst case).
     pub fn for_scene(d: &SceneDesc) -> Self {
         let pixels = d.camera.width as f64 * d.camera.height as f64;
         let paths = pixels * d.integrator.camera_samples as f64;
@@ -28,7 +35,14 @@ impl MemoryEstimate {
         };
         let gather_volumes = paths * per_path;
         let bins = d.film.bins as f64;
-        let gather_bytes = gather_volumes * (GATHER_RECORD_BYTES + 4.0 * bins);
+        // With media: the path's volumes, its segment with a throughput, and a surface
+        // sphere with another throughput (transmission changes it in chromatic media).
+        let gather_bytes = if d.media.is_empty() {
+            paths * (SURFACE_BYTES + 4.0 * bins)
+        } else {
+            let volumes = per_path - 1.0;
+            paths * (volumes * GATHER_RECORD_BYTES + PATH_BYTES + SURFACE_BYTES + 8.0 * bins)
+        };
         // Per pixel and bin: exact i128 sums of the two layers and of squares (48 bytes), the
         // pass buffer and the light pass's chunk buffers in flight (f32, two layers each).
         let film_bytes = pixels * bins * (48.0 + 8.0 * 5.0);

@@ -141,12 +141,9 @@ impl<'a> Renderer<'a> {
             let t0 = Instant::now();
             let (mut out, next) = camera_pass(scene, self.seed, pass, row, budget);
             let t1 = Instant::now();
-            let surfaces = std::mem::take(&mut out.surfaces);
-            let volumes = std::mem::take(&mut out.volumes);
-            let weights = std::mem::take(&mut out.weights);
-            self.stats.surface_records += surfaces.len() as u64;
-            self.stats.volume_records += volumes.len() as u64;
-            let gather = Gather::new(self.radius, surfaces, volumes, weights);
+            self.stats.surface_records += out.surfaces.len() as u64;
+            self.stats.volume_records += out.volumes.len() as u64;
+            let gather = Gather::from_output(&scene.media, self.radius, &mut out);
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
             light_pass(scene, &gather, self.seed, pass, tile, norm, &mut buf);

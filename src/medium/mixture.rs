@@ -47,6 +47,20 @@ pub struct MixEval {
     pub tmix: f32,
 }
 
+/// `st_l - min_k st_k` over the medium's active bins (0 past them): the exponents of
+/// [`MixEval::tr`], so that `e^{-x_l s}` recomputes a sphere's scaled per-bin attenuation
+/// bit for bit (see [`MultiSphereWalk::walk_scaled`](super::MultiSphereWalk::walk_scaled)).
+pub fn relative_extinction(medium: &HomogeneousMedium) -> Spectrum {
+    let n = medium.n;
+    let st = &medium.sigma_t;
+    let st_min = st.0[..n].iter().copied().fold(f32::INFINITY, f32::min);
+    let mut x = Spectrum::ZERO;
+    for l in 0..n {
+        x.0[l] = st.0[l] - st_min;
+    }
+    x
+}
+
 /// `e^{-k s}` that is 1 for k = 0 even when s is infinite.
 #[inline]
 pub(crate) fn atten(k: f32, s: f32) -> f32 {

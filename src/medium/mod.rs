@@ -16,7 +16,7 @@ mod walk;
 pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};
 pub use homogeneous::HomogeneousMedium;
-pub use mixture::{ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture};
+pub use mixture::{ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, relative_extinction};
 pub use phase::HenyeyGreenstein;
 pub use spectral::power_law;
 pub use walk::{MultiSphereWalk, StepRate, WalkEnd, sample_extinction};

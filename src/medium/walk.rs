@@ -81,6 +81,48 @@ impl MultiSphereWalk {
         R: Rng + ?Sized,
         F: FnMut(f32, &Spectrum),
     {
+        self.walk_eval(medium, mix, seg_len, rng, |s, e| {
+            let w = medium.sigma_s * e.tr * (self.q / e.pdf);
+            on_sphere(s, &w);
+        })
+    }
+
+    /// The same walk (same random numbers, same outcome) reporting each sphere's weight in
+    /// factored form, `on_sphere(s, c)` with `c = q / pdf_mix(s)` scaled as [`MixEval`]: the
+    /// sphere weight is `sigma_s,l e^{-(st_l - st_min) s} c`, which
+    /// [`relative_extinction`](super::relative_extinction) lets a gather recompute per bin from
+    /// `s` alone, so that spheres need not store a spectrum.
+    #[inline]
+    pub fn walk_scaled<R, F>(
+        &self,
+        medium: &HomogeneousMedium,
+        mix: &Mixture,
+        seg_len: f32,
+        rng: &mut R,
+        mut on_sphere: F,
+    ) -> WalkEnd
+    where
+        R: Rng + ?Sized,
+        F: FnMut(f32, f32),
+    {
+        self.walk_eval(medium, mix, seg_len, rng, |s, e| {
+            on_sphere(s, self.q / e.pdf)
+        })
+    }
+
+    #[inline]
+    fn walk_eval<R, F>(
+        &self,
+        medium: &HomogeneousMedium,
+        mix: &Mixture,
+        seg_len: f32,
+        rng: &mut R,
+        mut on_sphere: F,
+    ) -> WalkEnd
+    where
+        R: Rng + ?Sized,
+        F: FnMut(f32, &MixEval),
+    {
         let rate_scale = match self.rate {
             StepRate::SigmaTOverQ => 1.0 / self.q,
             StepRate::PaperTypoBiased => self.q,
@@ -96,8 +138,7 @@ impl MultiSphereWalk {
             // pdf can only underflow to 0 at depths of ~100 mean free paths of every bin;
             // such a sphere carries nothing.
             if e.pdf > 0.0 {
-                let w = medium.sigma_s * e.tr * (self.q / e.pdf);
-                on_sphere(s, &w);
+                on_sphere(s, &e);
             }
             if rng.random::<f32>() < self.q {
                 return extinction(medium, mix, &e, s, rng);
