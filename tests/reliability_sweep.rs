@@ -107,7 +107,11 @@ fn extreme_parameters_give_finite_images() {
                         if r.film().dropped > 0 {
                             report.push(format!("{} dropped: {sets:?}", r.film().dropped));
                         }
-                        if radius == "10" && !img.data.iter().any(|v| *v > 0.0) {
+                        // Cylinders in opaque fog (sigma 1e6) only see the light that passes
+                        // outside the box near it: about 6e-5 per pixel, which 2 x 300 forward
+                        // rays usually miss (2 x 30 000 find it), so no light is expected there.
+                        let expect_light = !(sigma == "1e6" && volume != "spheres");
+                        if radius == "10" && expect_light && !img.data.iter().any(|v| *v > 0.0) {
                             black.push(format!("{sets:?}"));
                         }
                         cases += 1;

@@ -67,9 +67,10 @@ impl Light {
         }
     }
 
-    /// Grows a directional beam by `margin` beyond the scene's bounds: integration volumes
-    /// reach up to their radius outside the geometry (open media, method note 8) and must see
-    /// the light that passes there. Other lights are returned unchanged.
+    /// Grows a directional beam by `margin` (at most a tenth of the bounds' diagonal) beyond the
+    /// scene's bounds: integration volumes reach up to their radius outside the geometry (open
+    /// media, method note 8) and must see the light that passes there. Other lights are
+    /// returned unchanged.
     pub fn with_beam_margin(mut self, m: f32) -> Light {
         if let Light::Directional { margin, .. } = &mut self {
             *margin = m.max(0.0);
@@ -125,7 +126,9 @@ impl Light {
         if b.is_empty() {
             return Beam::empty();
         }
-        let m = Vec3::splat(margin);
+        // Radii beyond a tenth of the scene are blur, not gathering: growing the beam by them
+        // would spread the forward rays over mostly empty space.
+        let m = Vec3::splat(margin.min(0.1 * b.diagonal().length()));
         Beam::new(b.min - m, b.max + m, direction)
     }
 
