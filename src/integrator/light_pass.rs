@@ -23,9 +23,11 @@ use crate::scene::Scene;
 use crate::spectrum::Spectrum;
 
 /// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
-/// order (and so every bit of the image) does not depend on how many threads ran.
+/// order (and so every bit of the image) does not depend on how many threads ran. Small, so that
+/// a pass of a few thousand rays still spreads evenly over the threads (a chunk costs only its
+/// splat log to hand over, not a film-sized buffer).
 pub fn chunk_size(total: u64) -> u64 {
-    (total / 32).clamp(4096, 1 << 20)
+    (total / 256).clamp(256, 1 << 16)
 }
 
 /// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
