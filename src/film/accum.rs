@@ -34,6 +34,14 @@ pub const SQ_SCALE: f64 = 281_474_976_710_656.0;
 /// Keeps one sample's square inside the `i128` range at `SQ_SCALE`.
 pub const MAX_SAMPLE: f64 = 1.0e11;
 
+/// Whether every bin of the sample `w * f * scale` is finite (branch-free over the bins).
+#[inline]
+pub(super) fn products_finite(w: &[f32], f: &[f32], scale: f32) -> bool {
+    w.iter()
+        .zip(f)
+        .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite())
+}
+
 /// One pass's estimate per layer, pixel and bin, in radiance units.
 #[derive(Clone, Debug)]
 pub struct PassBuffer {
@@ -60,11 +68,7 @@ impl PassBuffer {
     /// pixel (a NaN would otherwise erase every other sample of the pass in that slot).
     #[inline]
     pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
-        let finite = w
-            .iter()
-            .zip(f)
-            .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite());
-        if !finite {
+        if !products_finite(w, f, scale) {
             self.dropped += 1;
             return;
         }

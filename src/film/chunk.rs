@@ -7,7 +7,7 @@
 //! Draining chunks into the pass in chunk order makes the pass's floating-point sums depend
 //! only on the chunk boundaries, never on which thread traced which chunk.
 
-use super::accum::{LAYERS, Layer, PassBuffer};
+use super::accum::{LAYERS, Layer, PassBuffer, products_finite};
 
 pub struct ChunkSplats {
     pixels: usize,
@@ -45,11 +45,7 @@ impl ChunkSplats {
     pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
         let n = self.n;
         let (w, f) = (&w[..n], &f[..n]);
-        let finite = w
-            .iter()
-            .zip(f)
-            .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite());
-        if !finite {
+        if !products_finite(w, f, scale) {
             self.dropped += 1;
             return;
         }
