@@ -341,7 +341,9 @@ impl ForwardTracer<'_> {
             // A grey flight's flux does not change along the segment: skip its survival weights.
             let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
             let fwd = flight.map(|f| f.mixture());
-            let f = med.phase.eval(-ray.d.dot(seg.dir));
+            // Evaluated only once a candidate's box test became a real hit: about half of the
+            // candidates miss their sphere or cylinder.
+            let phase = || med.phase.eval(-ray.d.dot(seg.dir));
             let w = gather.throughput(seg.throughput);
             let factor: Spectrum = match seg.shape {
                 VolumeShape::Sphere => {
@@ -350,6 +352,7 @@ impl ForwardTracer<'_> {
                     else {
                         return;
                     };
+                    let f = phase();
                     let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
                     let k = f * volume::track_length_density(&chord, radius);
                     at * gather.sphere_weight(med, seg, rec, k)
@@ -376,7 +379,7 @@ impl ForwardTracer<'_> {
                             volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
                         }
                     };
-                    *flux * k * f
+                    *flux * k * phase()
                 }
             };
             buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
