@@ -135,6 +135,13 @@ def mse(a: np.ndarray, b: np.ndarray, m: np.ndarray | None = None) -> float:
     return float(d[m].mean()) if m is not None else float(d.mean())
 
 
+def own_share(effort: float, ref_effort: float) -> float:
+    """Share of an image's measured MSE against a reference that is the image's own noise, when
+    both come from the same estimator and variance falls as 1 / effort (time or spp): the
+    reference adds Var / ref_effort to the image's Var / effort."""
+    return 1.0 / (1.0 + effort / ref_effort)
+
+
 def bin4(a: np.ndarray) -> np.ndarray:
     """4 x 4 box average: the error at a scale where brume's radius blur (a few pixels) and
     single-pixel speckle matter less."""
@@ -230,7 +237,7 @@ def main() -> None:
     stored_var = None if same_settings else meta.get("brume_var_ref")
     for i, t in enumerate(a.times):
         img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", drop_sets + a.brume_set)
-        f = 1.0 / (1.0 + bt / b_ref_t)  # share of the measured MSE that is the image's own noise
+        f = own_share(bt, b_ref_t)
         e = errors(img, b_ref, away, beam)
         b_var_ref.append(tuple(x * (1 - f) for x in e))
         if stored_var is not None:
@@ -248,7 +255,7 @@ def main() -> None:
             print(f"t={t:g}: brume {bt:.1f} s", flush=True)
             continue
         img, mt, spp = mit.render(t)
-        ff = 1.0 / (1.0 + spp / m_ref_spp)
+        ff = own_share(spp, m_ref_spp)
         img_m[len(rows)] = img
         rows.append({
             "renderer": "mitsuba", "budget_s": t, "measured_s": mt, "spp": spp,
