@@ -158,13 +158,18 @@ impl Light {
     /// directions are drawn exactly from its emission distribution.
     pub fn sample_emission(&self, geometry: &Geometry, u: [f32; 4]) -> EmissionSample {
         let (u0, u1) = (Vec2::new(u[0], u[1]), Vec2::new(u[2], u[3]));
-        let flux = self.power(geometry);
         let ray = match self {
             Light::Directional {
-                direction, margin, ..
+                direction,
+                irradiance,
+                margin,
             } => {
-                let o = Self::beam(geometry, *direction, *margin).sample(u0, u[2]);
-                Ray::new(o, *direction)
+                // One beam per ray gives both the origin and the flux.
+                let beam = Self::beam(geometry, *direction, *margin);
+                return EmissionSample {
+                    ray: Ray::new(beam.sample(u0, u[2]), *direction),
+                    flux: *irradiance * beam.area,
+                };
             }
             Light::Point { position, .. } => Ray::new(*position, uniform_sphere(u0)),
             Light::Spot {
@@ -201,7 +206,10 @@ impl Light {
                 crate::geometry::spawn(p, n, dir)
             }
         };
-        EmissionSample { ray, flux }
+        EmissionSample {
+            ray,
+            flux: self.power(geometry),
+        }
     }
 
     /// Radiance leaving an area light towards `wo` at a hit on its shape (0 for delta lights).
