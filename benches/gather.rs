@@ -11,7 +11,8 @@
 use std::time::Instant;
 
 use brume::integrator::gather::Gather;
-use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord, VolumeShape};
+use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord};
+use brume::integrator::{Estimator, IntegratorDesc};
 use brume::medium::HomogeneousMedium;
 use brume::spectrum::Spectrum;
 use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, criterion_main};
@@ -50,7 +51,6 @@ fn records(n: usize, per_segment: usize, distinct: bool, seed: u64) -> Records {
             dir: Vec3::NEG_Z,
             throughput: if distinct { i as u32 } else { 0 },
             medium: 0,
-            shape: VolumeShape::Sphere,
             classes: CLASS_ALL,
         })
         .collect();
@@ -77,8 +77,10 @@ fn media() -> Vec<HomogeneousMedium> {
 }
 
 fn build(n: usize, r: Records) -> Gather {
+    // q does not matter here: the records are given; spheres bound them.
+    let spheres = Estimator::from_desc(&IntegratorDesc::default(), &media()).expect("spheres");
     Gather::new(
-        &media(),
+        &spheres,
         radius(n),
         Vec::new(),
         r.segments,

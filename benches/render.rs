@@ -10,7 +10,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use brume::integrator::{Budget, Renderer};
-use brume::scene::{build, load};
+use brume::scene::{build, build_integrator, load};
 
 fn main() {
     // `cargo test --benches` runs bench targets without `--bench`: nothing to check here.
@@ -58,6 +58,7 @@ fn main() {
         sets.extend(extra.iter().cloned());
         let loaded = load(&file, &sets).unwrap_or_else(|e| panic!("{e}"));
         let scene = build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+        let integrator = build_integrator(&loaded, &scene).unwrap_or_else(|e| panic!("{e}"));
         let mut first_wall = None;
         for &t in &threads {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -65,7 +66,7 @@ fn main() {
                 .build()
                 .expect("thread pool");
             let (s, wall) = pool.install(|| {
-                let mut r = Renderer::new(&scene, 1);
+                let mut r = Renderer::new(&scene, integrator.clone(), 1);
                 let t0 = Instant::now();
                 r.run(Budget::Passes(passes), |_, _| {});
                 (r.stats, t0.elapsed().as_secs_f64())

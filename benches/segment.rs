@@ -2,7 +2,7 @@
 //! truncated cylinder's Gauss–Legendre weights (colour, 16 bins). Geometry only; no BVH.
 //! Run briefly: `cargo bench --bench segment -- --warm-up-time 1 --measurement-time 3`.
 
-use brume::integrator::volume::{
+use brume::integrator::estimator::{
     CameraAxis, cylinder_eq2, cylinder_truncated, segment_cylinder, segment_sphere,
     track_length_density,
 };

@@ -17,3 +17,10 @@ pub mod medium;
 pub mod scene;
 pub mod spectrum;
 pub mod study;
+pub mod world;
+
+/// Running means, standard errors and quadrature for the Monte-Carlo unit tests; the same file
+/// serves the integration tests in tests/.
+#[cfg(test)]
+#[path = "../tests/estimator_stats.rs"]
+pub(crate) mod test_stats;

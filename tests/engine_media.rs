@@ -6,7 +6,7 @@ mod common;
 
 use std::f64::consts::PI;
 
-use brume::integrator::{Budget, Renderer};
+use brume::integrator::Budget;
 use brume::spectrum::{SpectralGrid, power_law};
 use common::*;
 
@@ -304,7 +304,7 @@ fn spheres_per_segment_match_the_formula() {
         .map(|b| (1.0 - (-(ss[b] + 0.2)).exp()) / BINS as f64)
         .sum::<f64>()
         / q;
-    let mut r = Renderer::new(&s, 5);
+    let mut r = s.renderer(5);
     r.run(Budget::Passes(1), |_, _| {});
     let got = r.stats.volume_records as f64 / r.stats.camera_paths as f64;
     eprintln!("spheres per segment: measured {got:.4}, formula {expected:.4}");
@@ -359,13 +359,13 @@ fn memory_budget_splits_passes_into_tiles() {
         "camera.height=32",
     ];
     let whole = scene(&fog_text(""), &sets);
-    let mut r = Renderer::new(&whole, 9);
+    let mut r = whole.renderer(9);
     r.run(Budget::Passes(1), |_, _| {});
     let full = r.stats.peak_gather_bytes;
     // A budget of a fifth of the pass: every batch of rows becomes its own tile.
     let budget = format!("integrator.max_gather_bytes={}", full / 5);
     let s = scene(&fog_text(""), &[&sets[..], &[budget.as_str()]].concat());
-    let mut r = Renderer::new(&s, 9);
+    let mut r = s.renderer(9);
     r.run(Budget::Passes(1), |_, _| {});
     eprintln!(
         "untiled peak {full} bytes; tiled: {} tiles, peak {} bytes",

@@ -313,6 +313,6 @@ fn deterministic_across_thread_counts() {
     );
 }
 
-fn pool_other_seed(s: &brume::scene::Scene) -> brume::film::SpectralImage {
+fn pool_other_seed(s: &Setup) -> brume::film::SpectralImage {
     render(s, 43, 3)
 }

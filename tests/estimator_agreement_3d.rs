@@ -12,7 +12,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::integrator::volume::{
+use brume::integrator::estimator::{
     CameraAxis, cylinder_eq2_fwd, cylinder_truncated, segment_cylinder, segment_sphere,
     track_length_density,
 };

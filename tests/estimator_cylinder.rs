@@ -4,7 +4,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::integrator::volume::{
+use brume::integrator::estimator::{
     CylinderChord, cylinder_eq2, cylinder_eq2_fwd, cylinder_truncated, eq2_factor,
 };
 use brume::medium::{ChannelPick, HomogeneousMedium, Mixture};

@@ -1,10 +1,11 @@
 //! Gather-volume geometry against brute force: chords of forward segments through spheres and
 //! finite cylinders (by fine point sampling along the segment), and the bounding boxes.
 
-use brume::integrator::volume::{
-    CameraAxis, capsule_aabb, cylinder_aabb, segment_aabb, segment_cylinder, segment_sphere,
-    sphere_aabb,
-};
+use brume::integrator::estimator::{CameraAxis, Estimator, segment_cylinder, segment_sphere};
+use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord};
+use brume::integrator::{IntegratorDesc, VolumeKind};
+use brume::medium::HomogeneousMedium;
+use brume::spectrum::Spectrum;
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -116,33 +117,59 @@ fn cylinder_chords_match_brute_force() {
     assert!(hits > 600, "{hits} hits");
 }
 
+/// Every estimator's gather bounds contain its volume: points on a sphere of radius r around
+/// the volume's distance (spheres), or on the surface of the cylinder over the segment's first
+/// `s` metres (cylinders), including its rims.
 #[test]
-fn boxes_contain_their_volumes() {
+fn estimator_bounds_contain_their_volumes() {
+    let medium = HomogeneousMedium::new(&Spectrum::splat(1.0, 1), &Spectrum::ZERO, 0.0, 1).unwrap();
+    let mut desc = IntegratorDesc::default();
     let mut rng = Pcg64Mcg::seed_from_u64(702);
-    for _ in 0..200 {
-        let a = rand_point(&mut rng, 1.0);
-        let u = rand_unit(&mut rng);
-        let (len, r) = (rng.random::<f32>() * 2.0, rng.random::<f32>() * 0.3);
-        let b = cylinder_aabb(a, u, len, r);
-        let cap = capsule_aabb(a, a + u * len, r);
-        let (e1, e2) = u.any_orthonormal_pair();
-        let mut touched = [false; 6];
-        for _ in 0..500 {
-            let phi = std::f32::consts::TAU * rng.random::<f32>();
-            let t = if rng.random::<f32>() < 0.5 { 0.0 } else { len };
-            let p = a + u * t + (e1 * phi.cos() + e2 * phi.sin()) * r;
-            for i in 0..3 {
-                assert!(p[i] >= b.min[i] - 1e-5 && p[i] <= b.max[i] + 1e-5);
-                assert!(p[i] >= cap.min[i] - 1e-5 && p[i] <= cap.max[i] + 1e-5);
-                touched[i] |= p[i] < b.min[i] + 2e-3 * (r + 1e-3);
-                touched[3 + i] |= p[i] > b.max[i] - 2e-3 * (r + 1e-3);
+    for kind in [
+        VolumeKind::Spheres,
+        VolumeKind::Cylinder,
+        VolumeKind::CylinderTruncated,
+        VolumeKind::CylinderLong,
+    ] {
+        desc.volume = kind;
+        let e = Estimator::from_desc(&desc, std::slice::from_ref(&medium)).unwrap();
+        for _ in 0..200 {
+            let a = rand_point(&mut rng, 1.0);
+            let u = rand_unit(&mut rng);
+            let (len, r) = (rng.random::<f32>() * 2.0, rng.random::<f32>() * 0.3);
+            let seg = SegmentRecord {
+                origin: a,
+                pixel: 0,
+                dir: u,
+                throughput: 0,
+                medium: 0,
+                classes: CLASS_ALL,
+            };
+            let v = VolumeRecord {
+                segment: 0,
+                s: len,
+                scale: 1.0,
+            };
+            let b = e.bounds(&seg, &v, r);
+            let (e1, e2) = u.any_orthonormal_pair();
+            for _ in 0..200 {
+                let p = match kind {
+                    VolumeKind::Spheres => a + u * len + rand_unit(&mut rng) * r,
+                    VolumeKind::Cylinder
+                    | VolumeKind::CylinderTruncated
+                    | VolumeKind::CylinderLong => {
+                        let phi = std::f32::consts::TAU * rng.random::<f32>();
+                        let t = len * rng.random::<f32>().clamp(0.0, 1.0);
+                        a + u * t + (e1 * phi.cos() + e2 * phi.sin()) * r
+                    }
+                };
+                for i in 0..3 {
+                    assert!(
+                        p[i] >= b.min[i] - 1e-5 && p[i] <= b.max[i] + 1e-5,
+                        "{kind:?}: {p} outside its bounds"
+                    );
+                }
             }
         }
-        // Tight: the rim points reach every face (within sampling resolution).
-        assert!(touched.iter().filter(|&&t| t).count() >= 4, "{touched:?}");
-        let s = sphere_aabb(a, r);
-        assert!((s.max - s.min - Vec3::splat(2.0 * r)).abs().max_element() < 1e-6);
-        let g = segment_aabb(a, u, len);
-        assert!((g.max - g.min - (u * len).abs()).length() < 1e-5);
     }
 }

@@ -11,7 +11,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::integrator::volume::{crossing_density, segment_sphere, track_length_density};
+use brume::integrator::estimator::{crossing_density, segment_sphere, track_length_density};
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;

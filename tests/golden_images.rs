@@ -49,7 +49,9 @@ const COMMON: [&str; 5] = [
 fn render_hash(scene: &std::path::Path, sets: &[String]) -> u64 {
     let loaded = brume::scene::load(scene, sets).unwrap_or_else(|e| panic!("{e}"));
     let built = brume::scene::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
-    let mut r = Renderer::new(&built, 11);
+    let integrator =
+        brume::scene::build_integrator(&loaded, &built).unwrap_or_else(|e| panic!("{e}"));
+    let mut r = Renderer::new(&built, integrator, 11);
     r.run(Budget::Passes(2), |_, _| {});
     let img = r.image();
     let words = img

@@ -4,7 +4,7 @@
 
 mod common;
 
-use brume::integrator::{Budget, Renderer};
+use brume::integrator::Budget;
 
 /// A fog box on a wall, a grazing directional light, and a laser skimming the wall.
 const SCENE: &str = r#"
@@ -94,7 +94,7 @@ fn extreme_parameters_give_finite_images() {
                         ];
                         let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
                         let scene = common::scene(SCENE, &sets);
-                        let mut r = Renderer::new(&scene, 7);
+                        let mut r = scene.renderer(7);
                         r.run(Budget::Passes(2), |_, _| {});
                         let img = r.image();
                         let finite = img.data.iter().all(|v| v.is_finite())

@@ -38,7 +38,9 @@ fn every_scene_builds_and_renders_tiny() {
     for f in &files {
         let loaded = brume::scene::load(f, &sets).unwrap_or_else(|e| panic!("{e}"));
         let scene = brume::scene::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
-        let mut r = Renderer::new(&scene, 7);
+        let integrator =
+            brume::scene::build_integrator(&loaded, &scene).unwrap_or_else(|e| panic!("{e}"));
+        let mut r = Renderer::new(&scene, integrator, 7);
         r.run(Budget::Passes(1), |_, _| {});
         let img = r.image();
         assert_eq!(img.data.len(), 12 * 8 * scene.grid.n);

@@ -10,7 +10,7 @@ use super::RenderArgs;
 use super::merge::{self, FILM_EXT, is_film_path};
 use super::progress::Progress;
 use brume::film::{Film, FilmId, checkpoint, output};
-use brume::integrator::{Budget, MemoryEstimate, Renderer, gather_budget};
+use brume::integrator::{Budget, MemoryEstimate, Renderer};
 
 /// Exit status of an interrupted render (the shell convention for SIGINT).
 const INTERRUPTED: u8 = 130;
@@ -81,10 +81,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     let (film, interrupted) = pool.install(|| -> anyhow::Result<(Film, bool)> {
         let scene = brume::scene::build(&loaded)?;
+        let integrator = brume::scene::build_integrator(&loaded, &scene)?;
         let mut renderer = match (resumed, range) {
-            (Some(r), _) => Renderer::resume(&scene, seed, r.film).map_err(anyhow::Error::msg)?,
-            (None, Some((a, _))) => Renderer::starting_at(&scene, seed, a),
-            (None, None) => Renderer::new(&scene, seed),
+            (Some(r), _) => {
+                Renderer::resume(&scene, integrator, seed, r.film).map_err(anyhow::Error::msg)?
+            }
+            (None, Some((a, _))) => Renderer::starting_at(&scene, integrator, seed, a),
+            (None, None) => Renderer::new(&scene, integrator, seed),
         };
         let total = match budget {
             Budget::Passes(p) => p as u64,
@@ -210,15 +213,18 @@ fn parse_range(s: &str) -> anyhow::Result<(u64, u64)> {
 
 /// Refuses a render whose memory estimate exceeds the machine's memory, unless forced.
 fn check_memory(desc: &brume::scene::desc::SceneDesc, force: bool) -> anyhow::Result<()> {
-    let est = MemoryEstimate::for_scene(desc);
+    let est = MemoryEstimate::new(
+        &desc.integrator,
+        desc.camera.width as u64 * desc.camera.height as u64,
+        desc.film.bins,
+        !desc.media.is_empty(),
+    );
     let values = desc.camera.width as f64 * desc.camera.height as f64 * desc.film.bins as f64;
     // Film: three i128 sums; pass buffer: two f32 layers; final image: data, noise, layers.
     let film = values * (3.0 * 16.0 + 2.0 * 4.0 + 4.0 * 4.0);
-    let gather = est
-        .gather_bytes
-        .min(gather_budget(desc.integrator.max_gather_bytes) as f64);
+    let gather = est.gather_bytes.min(desc.integrator.gather_budget() as f64);
     let need = film + gather;
-    let ram = gather_budget(0) as f64 * 4.0;
+    let ram = machine_memory();
     if need > ram && !force {
         anyhow::bail!(
             "the render needs about {:.1} GiB (film {:.1} GiB, gather {:.1} GiB) but the machine \
@@ -233,6 +239,18 @@ fn check_memory(desc: &brume::scene::desc::SceneDesc, force: bool) -> anyhow::Re
 }
 
 const GIB: f64 = (1u64 << 30) as f64;
+
+/// The machine's memory in bytes (8 GiB when /proc/meminfo cannot be read).
+fn machine_memory() -> f64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|m| {
+            m.lines()
+                .find(|l| l.starts_with("MemTotal:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+        })
+        .map_or(8.0 * GIB, |kib| kib as f64 * 1024.0)
+}
 
 fn output_paths(
     args: &RenderArgs,

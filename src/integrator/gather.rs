@@ -13,11 +13,8 @@ use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 use obvhs::ray::Ray as BvhRay;
 
-use super::camera_pass::CameraOutput;
-use super::exp::exp_nonpositive;
-use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord, VolumeShape};
-use crate::medium::{HomogeneousMedium, relative_extinction};
-use crate::spectrum::Spectrum;
+use super::estimator::Estimator;
+use super::record::{CameraOutput, SegmentRecord, SurfaceRecord, VolumeRecord};
 
 /// CWBVH bytes per primitive, an upper bound of what fog scenes and benches/gather.rs measure
 /// (8-wide nodes of 80 bytes, up to 3 primitives per leaf).
@@ -37,8 +34,6 @@ pub struct Gather {
     /// Throughput spectra of `bins` floats, addressed by the records' `throughput` indices.
     pub throughputs: Vec<f32>,
     pub bins: usize,
-    /// Per medium: `st - st_min` (see `relative_extinction`), None when grey (all factors 1).
-    extinction: Vec<Option<Spectrum>>,
     surface_bvh: Option<CwBvh>,
     /// Segment queries are long rays through dense clouds of volumes: the 8-wide compressed BVH
     /// traverses them several times faster than the binary one.
@@ -98,16 +93,22 @@ fn segment_order(segments: &mut Vec<SegmentRecord>, volumes: &mut [VolumeRecord]
     *segments = ordered;
 }
 
-/// Bounds of a volume: a sphere, or the capsule around a cylinder's axis.
-pub fn volume_aabb(seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
-    let r = Vec3A::splat(radius);
-    let a = Vec3A::from(seg.origin);
-    let b = Vec3A::from(seg.at(v.s));
-    let (a, b) = match seg.shape {
-        VolumeShape::Sphere => (b, b),
-        _ => (a, b),
-    };
-    Aabb::new(a.min(b) - r, a.max(b) + r)
+/// Memory the gather structure built from `out` will hold (`Gather::bytes()`, with the BVHs at
+/// their measured bytes per primitive).
+pub fn bytes_for(out: &CameraOutput) -> usize {
+    let prims = out.surfaces.len() + out.volumes.len();
+    out.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
+        + out.segments.len() * std::mem::size_of::<SegmentRecord>()
+        + out.volumes.len() * std::mem::size_of::<VolumeRecord>()
+        + out.throughputs.data_bytes()
+        + prims * BVH_BYTES_PER_PRIM
+}
+
+/// Peak memory while the gather is built from `out`: what it keeps, plus the binary BVH and the
+/// boxes the wide BVHs are converted from (freed before the light pass).
+pub fn peak_bytes_for(out: &CameraOutput) -> usize {
+    let prims = out.surfaces.len() + out.volumes.len();
+    bytes_for(out) + prims * BUILD_BYTES_PER_PRIM
 }
 
 /// obvhs mishandles -0.0 direction components: use +0.0.
@@ -116,10 +117,10 @@ fn positive_zero(d: Vec3) -> Vec3A {
 }
 
 impl Gather {
-    /// Builds the BVHs over the records; `throughputs` holds spectra of `bins` floats; `media`
-    /// are the scene's (the records' medium indices point into it).
+    /// Builds the BVHs over the records, the volumes bounded as `estimator` shapes them;
+    /// `throughputs` holds spectra of `bins` floats.
     pub fn new(
-        media: &[HomogeneousMedium],
+        estimator: &Estimator,
         radius: f32,
         mut surfaces: Vec<SurfaceRecord>,
         mut segments: Vec<SegmentRecord>,
@@ -139,15 +140,11 @@ impl Gather {
             || {
                 let aabbs: Vec<Aabb> = volumes
                     .iter()
-                    .map(|v| volume_aabb(&segments[v.segment as usize], v, radius))
+                    .map(|v| estimator.bounds(&segments[v.segment as usize], v, radius))
                     .collect();
                 build_cwbvh(&aabbs)
             },
         );
-        let extinction = media
-            .iter()
-            .map(|m| (!m.grey).then(|| relative_extinction(m)))
-            .collect();
         leaf_order(&mut surface_bvh, &mut surfaces);
         leaf_order(&mut volume_bvh, &mut volumes);
         segment_order(&mut segments, &mut volumes);
@@ -158,18 +155,17 @@ impl Gather {
             volumes,
             throughputs,
             bins,
-            extinction,
             surface_bvh,
             volume_bvh,
         }
     }
 
     /// Builds the gather from a camera pass's records, leaving its direct radiance and counts.
-    pub fn from_output(media: &[HomogeneousMedium], radius: f32, out: &mut CameraOutput) -> Self {
+    pub fn from_output(estimator: &Estimator, radius: f32, out: &mut CameraOutput) -> Self {
         let bins = out.throughputs.bins();
         let table = std::mem::take(&mut out.throughputs);
         Self::new(
-            media,
+            estimator,
             radius,
             std::mem::take(&mut out.surfaces),
             std::mem::take(&mut out.segments),
@@ -184,41 +180,6 @@ impl Gather {
     pub fn throughput(&self, i: u32) -> &[f32] {
         let a = i as usize * self.bins;
         &self.throughputs[a..a + self.bins]
-    }
-
-    /// `st_l - st_min` of medium `m` over its bins, or None for a grey medium: a sphere's
-    /// per-bin factor is `e^{-x_l s}` times its scalars.
-    #[inline]
-    pub fn relative_extinction(&self, m: u16) -> Option<&Spectrum> {
-        self.extinction.get(m as usize).and_then(|x| x.as_ref())
-    }
-
-    /// A sphere's weight without the camera throughput, times `k`: what `MultiSphereWalk::walk`
-    /// reported for it (`sigma_s,l e^{-(st_l - st_min) s} q / pdf_mix(s)`), recomputed from the
-    /// distance and the scalar the record keeps. One exp per bin, none in grey media.
-    #[inline]
-    pub fn sphere_weight(
-        &self,
-        med: &HomogeneousMedium,
-        seg: &SegmentRecord,
-        rec: &VolumeRecord,
-        k: f32,
-    ) -> Spectrum {
-        let mut w = med.sigma_s * (k * rec.scale);
-        if let Some(x) = self.relative_extinction(seg.medium) {
-            // The walk's `atten(x, s)` for the finite distances spheres have, in fixed blocks of
-            // 8 bins that the compiler vectorises (lanes past `bins` multiply zeros by 1).
-            let blocks = self.bins.div_ceil(8) * 8;
-            for (wb, xb) in w.0[..blocks]
-                .chunks_exact_mut(8)
-                .zip(x.0[..blocks].chunks_exact(8))
-            {
-                for (w, x) in wb.iter_mut().zip(xb) {
-                    *w *= exp_nonpositive(-x * rec.s);
-                }
-            }
-        }
-        w
     }
 
     /// Calls `f` for every surface record whose sphere contains `p`.
@@ -277,85 +238,5 @@ impl Gather {
             + self.throughputs.len() * 4
             + cwbvh(&self.surface_bvh)
             + cwbvh(&self.volume_bvh)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::integrator::throughput::ThroughputTable;
-    use crate::medium::{ChannelPick, Mixture, MultiSphereWalk};
-    use rand::SeedableRng;
-
-    /// The stored layout (segment, distance, scalar) gives back the weight the walk computed
-    /// for every sphere, in a chromatic medium where the per-bin factors differ by orders of
-    /// magnitude along the segment.
-    #[test]
-    fn recomputed_sphere_weights_equal_the_walks() {
-        let n = 16;
-        let st: Vec<f32> = (0..n).map(|l| 0.2 + 0.25 * l as f32).collect();
-        let albedo: Vec<f32> = (0..n).map(|l| 0.3 + 0.04 * l as f32).collect();
-        let med = HomogeneousMedium::from_extinction_albedo(&st, &albedo, 0.3).unwrap();
-        assert!(!med.grey);
-        let mut w = Spectrum::ZERO;
-        for l in 0..n {
-            w.0[l] = 0.5 + ((l * 7) % 5) as f32 * 0.3;
-        }
-        let mix = Mixture::new(ChannelPick::Throughput, &w, &med, 0.1);
-        for q in [1.0, 0.3] {
-            let walk = MultiSphereWalk::new(q).unwrap();
-            let mut table = ThroughputTable::new(n);
-            let (mut segments, mut volumes, mut expected) = (Vec::new(), Vec::new(), Vec::new());
-            for i in 0..400u64 {
-                let seg_len = 1.0 + (i % 7) as f32 * 2.0;
-                let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
-                walk.walk(&med, &mix, seg_len, &mut rng, |s, ws| {
-                    expected.push((s, w * *ws))
-                });
-                let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
-                let segment = segments.len() as u32;
-                segments.push(SegmentRecord {
-                    origin: Vec3::new(i as f32, 0.0, 0.0),
-                    pixel: i as u32,
-                    dir: Vec3::Z,
-                    throughput: table.insert(w.as_slice(n)),
-                    medium: 0,
-                    shape: VolumeShape::Sphere,
-                    classes: 3,
-                });
-                walk.walk_scaled(&med, &mix, seg_len, &mut rng, |s, scale| {
-                    volumes.push(VolumeRecord { segment, s, scale })
-                });
-            }
-            assert_eq!(volumes.len(), expected.len());
-            assert!(volumes.len() > 300, "{} spheres", volumes.len());
-            assert_eq!(table.len(), 1, "one shared throughput");
-            let by_key: std::collections::HashMap<(u32, u32), Spectrum> = volumes
-                .iter()
-                .zip(&expected)
-                .map(|(v, &(s, ew))| {
-                    assert_eq!(v.s, s);
-                    ((segments[v.segment as usize].pixel, s.to_bits()), ew)
-                })
-                .collect();
-            let table = table.into_data();
-            let g = Gather::new(&[med], 0.01, Vec::new(), segments, volumes, table, n);
-            let mut worst = 0.0f32;
-            for rec in &g.volumes {
-                let seg = &g.segments[rec.segment as usize];
-                let got = Spectrum::from_slice(g.throughput(seg.throughput))
-                    * g.sphere_weight(&med, seg, rec, 1.0);
-                let want = by_key[&(seg.pixel, rec.s.to_bits())];
-                for l in 0..n {
-                    let rel = (got.0[l] - want.0[l]).abs() / want.0[l].abs();
-                    worst = worst.max(rel);
-                }
-            }
-            eprintln!(
-                "q = {q}: {} spheres, worst relative error {worst:e}",
-                g.volumes.len()
-            );
-            assert!(worst < 1e-5, "q = {q}: {worst}");
-        }
     }
 }

@@ -10,17 +10,18 @@ use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use glam::Vec3;
 use rand::Rng as _;
 
-use super::camera_pass::{MAX_CROSSINGS, camera_mixture};
+use super::Integrator;
+use super::estimator::{Estimator, ForwardSegment, VolumeEstimator};
 use super::gather::Gather;
-use super::record::{CLASS_C, CLASS_D, VolumeShape};
+use super::path::{self, MediumStep, PathStep, SurfaceStep};
+use super::record::{CLASS_C, CLASS_D};
 use super::rng::{self, Domain, Rng};
-use super::volume;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
-use crate::geometry::{Hit, Ray, spawn};
+use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
 use crate::medium::{FlightEnd, ForwardFlight};
-use crate::scene::Scene;
 use crate::spectrum::Spectrum;
+use crate::world::Scene;
 
 /// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
 /// order (and so every bit of the image) does not depend on how many threads ran. Small, so that
@@ -30,8 +31,19 @@ pub fn chunk_size(total: u64) -> u64 {
     (total / 256).clamp(256, 1 << 16)
 }
 
-/// Traces the pass's forward rays against `gather`; `tile` numbers the gather tiles of a pass
-/// (0 unless a memory budget split it), keeping their random streams apart.
+/// Which forward rays a light pass traces and how it weighs them.
+pub struct LightJob {
+    pub seed: u64,
+    pub pass: u64,
+    /// Numbers the gather tiles of a pass (0 unless a memory budget split it), keeping their
+    /// random streams apart.
+    pub tile: u64,
+    /// Scale of every splat: 1 / (forward rays x camera samples per pixel).
+    pub norm: f32,
+}
+
+/// Traces the pass's forward rays against `gather` into `buf`. Returns false, leaving `buf`
+/// partial, when `stop` was set (checked before every chunk).
 ///
 /// Workers take chunks in order and trace them without waiting for each other; a finished
 /// chunk is added to `buf` as soon as every earlier chunk has been, so the sums are formed in
@@ -39,74 +51,112 @@ pub fn chunk_size(total: u64) -> u64 {
 /// chunk by a window of chunks, which bounds the memory of finished-but-unadded chunks.
 pub fn light_pass(
     scene: &Scene,
+    integrator: &Integrator,
     gather: &Gather,
-    seed: u64,
-    pass: u64,
-    tile: u64,
-    norm: f32,
+    job: &LightJob,
     buf: &mut PassBuffer,
-) {
-    let total = scene.settings.forward_rays;
+    stop: &AtomicBool,
+) -> bool {
+    let total = integrator.settings.forward_rays;
     let chunk = chunk_size(total);
-    let chunks = total.div_ceil(chunk);
     let workers = rayon::current_num_threads().max(1) as u64;
-    let window = 2 * workers;
     let (pixels, n) = (buf.pixels, buf.n);
-    let order = Mutex::new(Order {
-        next_add: 0,
-        finished: BTreeMap::new(),
-        spare: Vec::new(),
-        buf,
-    });
-    let added = Condvar::new();
-    let next_chunk = AtomicU64::new(0);
-    let aborted = AtomicBool::new(false);
-    let long = scene.settings.volume == crate::scene::desc::VolumeKind::CylinderLong;
+    let shared = Shared {
+        order: Mutex::new(Order {
+            next_add: 0,
+            finished: BTreeMap::new(),
+            spare: Vec::new(),
+            buf,
+        }),
+        added: Condvar::new(),
+        next_chunk: AtomicU64::new(0),
+        aborted: AtomicBool::new(false),
+        chunks: total.div_ceil(chunk),
+        window: 2 * workers,
+    };
     rayon::scope(|s| {
-        for _ in 0..workers.min(chunks) {
+        for _ in 0..workers.min(shared.chunks) {
             s.spawn(|_| {
                 // A worker that panics never adds its chunk: wake the others so that they stop
                 // instead of waiting for it forever (the panic then reaches the caller).
-                let _wake = WakeOnPanic(&aborted, &added, &order);
-                loop {
-                    let c = next_chunk.fetch_add(1, Ordering::Relaxed);
-                    if c >= chunks {
-                        return;
-                    }
-                    let mut sink = {
-                        let mut o = lock(&order);
-                        while c >= o.next_add + window {
-                            if aborted.load(Ordering::Relaxed) {
-                                return;
-                            }
-                            o = added.wait(o).unwrap_or_else(PoisonError::into_inner);
-                        }
-                        o.spare.pop()
-                    }
-                    .unwrap_or_else(|| ChunkSplats::new(pixels, n));
-                    let mut rng = rng::stream(seed, pass, Domain::Light, (tile << 40) | c);
-                    let rays = chunk.min(total - c * chunk);
+                let _wake = WakeOnPanic(&shared);
+                while let Some((c, mut sink)) = shared.next(stop, pixels, n) {
+                    let mut rng =
+                        rng::stream(job.seed, job.pass, Domain::Light, (job.tile << 40) | c);
                     let mut tracer = ForwardTracer {
                         scene,
-                        long,
+                        integrator,
                         gather,
-                        norm,
+                        norm: job.norm,
                         buf: &mut sink,
                         // NaN bits never equal a real origin's.
                         origins: [([u32::MAX; 3], None); 8],
                         next_origin: 0,
+                        flux: Spectrum::ZERO,
+                        flux0: 0.0,
+                        class: CLASS_C,
                     };
-                    for _ in 0..rays {
+                    for _ in 0..chunk.min(total - c * chunk) {
                         tracer.trace(&mut rng);
                     }
-                    let mut o = lock(&order);
-                    o.finished.insert(c, sink);
-                    o.add_ready();
-                    added.notify_all();
+                    shared.finish(c, sink);
                 }
             });
         }
     });
+    !shared.aborted.load(Ordering::Relaxed)
+}
+
+/// What the workers of one light pass share.
+struct Shared<'b> {
+    order: Mutex<Order<'b>>,
+    /// Signalled whenever chunks were added (or the pass aborted).
+    added: Condvar,
+    next_chunk: AtomicU64,
+    /// Set on an interrupt or a worker's panic: every worker stops.
+    aborted: AtomicBool,
+    chunks: u64,
+    /// How far a worker may run ahead of the oldest unfinished chunk.
+    window: u64,
+}
+
+impl Shared<'_> {
+    /// The next chunk to trace and a splat log for it, or None when all are taken or the pass
+    /// is aborted (`stop` set).
+    fn next(&self, stop: &AtomicBool, pixels: usize, n: usize) -> Option<(u64, ChunkSplats)> {
+        if stop.load(Ordering::Relaxed) {
+            self.abort();
+            return None;
+        }
+        let c = self.next_chunk.fetch_add(1, Ordering::Relaxed);
+        if c >= self.chunks {
+            return None;
+        }
+        let mut o = lock(&self.order);
+        while c >= o.next_add + self.window {
+            if self.aborted.load(Ordering::Relaxed) {
+                return None;
+            }
+            o = self.added.wait(o).unwrap_or_else(PoisonError::into_inner);
+        }
+        let sink = o.spare.pop().unwrap_or_else(|| ChunkSplats::new(pixels, n));
+        Some((c, sink))
+    }
+
+    /// Hands chunk `c` over; it is added once every earlier chunk is.
+    fn finish(&self, c: u64, sink: ChunkSplats) {
+        let mut o = lock(&self.order);
+        o.finished.insert(c, sink);
+        o.add_ready();
+        self.added.notify_all();
+    }
+
+    fn abort(&self) {
+        // Under the lock, so no waiter can miss the flag between its check and its wait.
+        let _o = lock(&self.order);
+        self.aborted.store(true, Ordering::Relaxed);
+        self.added.notify_all();
+    }
 }
 
 /// The ordered hand-over of finished chunks into the pass buffer.
@@ -127,15 +177,12 @@ impl Order<'_> {
     }
 }
 
-struct WakeOnPanic<'a, 'b>(&'a AtomicBool, &'a Condvar, &'a Mutex<Order<'b>>);
+struct WakeOnPanic<'a, 'b>(&'a Shared<'b>);
 
 impl Drop for WakeOnPanic<'_, '_> {
     fn drop(&mut self) {
         if std::thread::panicking() {
-            // Under the lock, so no waiter can miss the flag between its check and its wait.
-            let _o = lock(self.2);
-            self.0.store(true, Ordering::Relaxed);
-            self.1.notify_all();
+            self.0.abort();
         }
     }
 }
@@ -146,16 +193,20 @@ fn lock<'m, 'b>(m: &'m Mutex<Order<'b>>) -> MutexGuard<'m, Order<'b>> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
+/// One worker's forward rays: the state of the ray being traced and where its splats go.
 struct ForwardTracer<'a> {
     scene: &'a Scene,
-    /// Volumes are paper eq. 3 "long" cylinders: gather over whole forward segments.
-    long: bool,
+    integrator: &'a Integrator,
     gather: &'a Gather,
     norm: f32,
     buf: &'a mut ChunkSplats,
     /// Recent emission origins (as bits) and their media.
     origins: [([u32; 3], Option<u32>); 8],
     next_origin: usize,
+    /// The current ray's flux, its largest bin at emission, and its class (method note 6).
+    flux: Spectrum,
+    flux0: f32,
+    class: u8,
 }
 
 impl ForwardTracer<'_> {
@@ -171,80 +222,15 @@ impl ForwardTracer<'_> {
         let Some(es) = scene.lights.sample(&scene.geometry, u) else {
             return;
         };
-        let mut ray = es.ray;
-        let mut flux = es.flux;
-        let flux0 = flux.max_value();
-        if flux0.is_nan() || flux0 <= 0.0 || !flux.is_finite() {
+        self.flux = es.flux;
+        self.flux0 = es.flux.max_value();
+        if self.flux0.is_nan() || self.flux0 <= 0.0 || !es.flux.is_finite() {
             return;
         }
-        let mut class = CLASS_C;
-        let mut medium = self.medium_at(ray.o);
-        let (mut depth, mut crossings) = (0, 0);
-        while depth < scene.settings.max_depth && crossings < MAX_CROSSINGS {
-            let hit = scene.geometry.intersect(&ray, f32::INFINITY);
-            if let Some(m) = medium {
-                let seg_len = match &hit {
-                    Some(h) => h.t,
-                    None => scene.world_exit(&ray),
-                };
-                let med = &scene.media[m as usize];
-                let flight =
-                    ForwardFlight::sample(med, &flux, scene.settings.channel_floor, seg_len, rng);
-                // Paper eq. 3 integrates the forward attenuation deterministically: it needs the
-                // whole segment, not the sampled flight.
-                let reach = if self.long { seg_len } else { flight.end() };
-                self.gather_volumes(Some(m), class, &ray, reach, &flux, Some(&flight));
-                match flight.finish(med, &mut flux, 0.0, rng) {
-                    FlightEnd::Escaped => {}
-                    FlightEnd::Killed { .. } => return,
-                    FlightEnd::Scattered { t } => {
-                        depth += 1;
-                        if !self.roulette(&mut flux, flux0, depth, rng) {
-                            return;
-                        }
-                        let p = ray.o + ray.d * t;
-                        let d = med.phase.sample_dir(ray.d, rng.random(), rng.random());
-                        ray = Ray { o: p, d };
-                        continue;
-                    }
-                }
-            }
-            if medium.is_none() && scene.open_media {
-                // Integration volumes poking out of index-matched boundaries still see the
-                // forward rays that pass their outside part (method note 8).
-                let len = hit.as_ref().map_or_else(|| scene.world_exit(&ray), |h| h.t);
-                self.gather_volumes(None, class, &ray, len, &flux, None);
-            }
-            let Some(hit) = hit else { return };
-            let shape = scene.geometry.shape(hit.shape);
-            let Some(mat_id) = shape.material else {
-                medium = scene.geometry.medium_after(&hit, ray.d);
-                ray = spawn(hit.p, hit.ng, ray.d);
-                crossings += 1;
-                continue;
-            };
-            let material = &scene.materials[mat_id as usize];
-            let wo = -ray.d;
-            if material.diffuse_probability(wo, &hit) > 0.0 {
-                self.gather_surfaces(&hit, ray.d, &flux);
-            }
-            let u = Vec3::new(rng.random(), rng.random(), rng.random());
-            let Some(s) = material.sample(wo, &hit, u) else {
-                return;
-            };
-            if s.kind == LobeKind::Diffuse {
-                class = CLASS_D;
-            }
-            flux *= s.weight;
-            if s.wi.dot(hit.ng).signum() != wo.dot(hit.ng).signum() {
-                medium = scene.geometry.medium_after(&hit, s.wi);
-            }
-            ray = spawn(hit.p, hit.ng, s.wi);
-            depth += 1;
-            if !self.roulette(&mut flux, flux0, depth, rng) {
-                return;
-            }
-        }
+        self.class = CLASS_C;
+        let medium = self.medium_at(es.ray.o);
+        let max_depth = self.integrator.settings.max_depth;
+        path::trace(scene, max_depth, es.ray, medium, self, rng);
     }
 
     /// `Scene::medium_at` through a few remembered origins: point and spot lights emit every
@@ -260,22 +246,11 @@ impl ForwardTracer<'_> {
         m
     }
 
-    fn roulette(&mut self, flux: &mut Spectrum, flux0: f32, depth: u32, rng: &mut Rng) -> bool {
-        if depth < 2 {
-            return flux.max_value() > 0.0;
-        }
-        let p = (flux.max_value() / flux0).min(1.0);
-        if p.is_nan() || p <= 0.0 || rng.random::<f32>() >= p {
-            return false;
-        }
-        *flux *= 1.0 / p;
-        true
-    }
-
-    fn gather_surfaces(&mut self, hit: &Hit, v: Vec3, flux: &Spectrum) {
+    fn gather_surfaces(&mut self, hit: &Hit, v: Vec3) {
         let scene = self.scene;
         let n = scene.grid.n;
         let gather = self.gather;
+        let flux = &self.flux;
         let wi = -v;
         let ng = if hit.ng.dot(wi) >= 0.0 {
             hit.ng
@@ -309,80 +284,142 @@ impl ForwardTracer<'_> {
         });
     }
 
-    /// Gathers a forward segment in medium `m` (None: vacuum) into the volumes it meets.
-    /// Volumes of another medium count too when their medium is bounded only by index-matched
-    /// boundaries, across which the radiance field is continuous (method note 8).
+    /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
+    /// the volumes it meets; `flight` is the segment's flight in a medium.
     fn gather_volumes(
         &mut self,
         m: Option<u32>,
-        class: u8,
         ray: &Ray,
         len: f32,
-        flux: &Spectrum,
+        flight: Option<&ForwardFlight>,
+    ) {
+        let integrator = self.integrator;
+        match &integrator.estimator {
+            Estimator::Spheres(e) => self.gather_with(e, m, ray, len, flight),
+            Estimator::Cylinder(e) => self.gather_with(e, m, ray, len, flight),
+            Estimator::TruncatedCylinder(e) => self.gather_with(e, m, ray, len, flight),
+            Estimator::LongCylinder(e) => self.gather_with(e, m, ray, len, flight),
+        }
+    }
+
+    /// `gather_volumes` for one estimator. Volumes of another medium count too when their
+    /// medium is bounded only by index-matched boundaries, across which the radiance field is
+    /// continuous (method note 8).
+    fn gather_with<E: VolumeEstimator>(
+        &mut self,
+        e: &E,
+        m: Option<u32>,
+        ray: &Ray,
+        len: f32,
         flight: Option<&ForwardFlight>,
     ) {
         let scene = self.scene;
         let n = scene.grid.n;
         let gather = self.gather;
         let radius = gather.radius;
-        let norm = self.norm;
+        let (norm, class) = (self.norm, self.class);
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
+        // A grey flight's flux does not change along the segment: skip its survival weights.
+        let fwd = ForwardSegment {
+            o: ray.o,
+            d: ray.d,
+            len,
+            flux: &self.flux,
+            flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
+        };
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
             if seg.classes & class == 0 {
                 return;
             }
             let same = seg.medium == seg_medium;
-            if !same && (seg.shape == VolumeShape::Long || !scene.open_medium(seg.medium as u32)) {
+            if !same && (E::WHOLE_FORWARD_SEGMENT || !scene.open_medium(seg.medium as u32)) {
                 return;
             }
             // The record's own medium scatters the light towards the camera.
             let med = &scene.media[seg.medium as usize];
-            // A grey flight's flux does not change along the segment: skip its survival weights.
-            let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
-            let fwd = flight.map(|f| f.mixture());
-            // Evaluated only once a candidate's box test became a real hit: about half of the
-            // candidates miss their sphere or cylinder.
-            let phase = || med.phase.eval(-ray.d.dot(seg.dir));
             let w = gather.throughput(seg.throughput);
-            let factor: Spectrum = match seg.shape {
-                VolumeShape::Sphere => {
-                    let centre = seg.at(rec.s);
-                    let Some(chord) = volume::segment_sphere(ray.o, ray.d, len, centre, radius)
-                    else {
-                        return;
-                    };
-                    let f = phase();
-                    let at = flight.map_or(*flux, |fl| fl.flux_at(flux, chord.mid()));
-                    let k = f * volume::track_length_density(&chord, radius);
-                    at * gather.sphere_weight(med, seg, rec, k)
-                }
-                _ => {
-                    let axis = volume::CameraAxis {
-                        origin: seg.origin,
-                        dir: seg.dir,
-                        len: rec.s,
-                    };
-                    let Some(chord) = volume::segment_cylinder(&axis, radius, ray.o, ray.d, len)
-                    else {
-                        return;
-                    };
-                    let k = match (seg.shape, fwd) {
-                        (VolumeShape::Cylinder, Some(mix)) => {
-                            volume::cylinder_eq2_fwd(med, mix, &chord, radius)
-                        }
-                        (VolumeShape::Cylinder, None) => volume::cylinder_eq2(med, &chord, radius),
-                        (VolumeShape::Long, _) => volume::long_eq3_exact(med, &chord, radius),
-                        _ => {
-                            let cam =
-                                camera_mixture(scene, &Spectrum::from_slice(w), seg.medium as u32);
-                            volume::cylinder_truncated(med, &cam, fwd, &chord, radius)
-                        }
-                    };
-                    *flux * k * phase()
-                }
-            };
-            buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
+            if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
+                buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
+            }
         });
+    }
+}
+
+impl PathStep for ForwardTracer<'_> {
+    fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
+        let med = &self.scene.media[m as usize];
+        let floor = self.integrator.settings.channel_floor;
+        let flight = ForwardFlight::sample(med, &self.flux, floor, len, rng);
+        // Paper eq. 3 integrates the forward attenuation deterministically: it needs the whole
+        // segment, not the sampled flight.
+        let reach = if self.integrator.estimator.whole_forward_segment() {
+            len
+        } else {
+            flight.end()
+        };
+        self.gather_volumes(Some(m), ray, reach, Some(&flight));
+        match flight.finish(med, &mut self.flux) {
+            FlightEnd::Escaped => MediumStep::Reached,
+            FlightEnd::Killed { .. } => MediumStep::Ended,
+            FlightEnd::Scattered { t } => MediumStep::Scattered(t),
+        }
+    }
+
+    fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
+        if !self.roulette(depth, rng) {
+            return None;
+        }
+        let p = ray.o + ray.d * t;
+        let d = self.scene.media[m as usize]
+            .phase
+            .sample_dir(ray.d, rng.random(), rng.random());
+        Some(Ray { o: p, d })
+    }
+
+    fn vacuum(&mut self, ray: &Ray, hit: Option<&Hit>) {
+        if self.scene.open_media {
+            // Integration volumes poking out of index-matched boundaries still see the forward
+            // rays that pass their outside part (method note 8).
+            let len = hit.map_or_else(|| self.scene.world_exit(ray), |h| h.t);
+            self.gather_volumes(None, ray, len, None);
+        }
+    }
+
+    fn surface(&mut self, hit: &Hit, ray: &Ray, rng: &mut Rng) -> SurfaceStep {
+        let scene = self.scene;
+        let Some(mat_id) = scene.geometry.shape(hit.shape).material else {
+            return SurfaceStep::Null;
+        };
+        let material = &scene.materials[mat_id as usize];
+        let wo = -ray.d;
+        if material.diffuse_probability(wo, hit) > 0.0 {
+            self.gather_surfaces(hit, ray.d);
+        }
+        let u = Vec3::new(rng.random(), rng.random(), rng.random());
+        let Some(s) = material.sample(wo, hit, u) else {
+            return SurfaceStep::Stop;
+        };
+        if s.kind == LobeKind::Diffuse {
+            self.class = CLASS_D;
+        }
+        self.flux *= s.weight;
+        SurfaceStep::Scattered(s.wi)
+    }
+
+    /// Forward flux is relative to its emitted value `flux0`: the ray survives with probability
+    /// `max_l Phi_l / flux0` after its second event (the first two carry the direct and
+    /// once-scattered light, never cut), reweighted by the inverse. Before that a ray whose
+    /// flux fell to zero (absorbed in every bin) ends.
+    fn roulette(&mut self, depth: u32, rng: &mut Rng) -> bool {
+        if depth < 2 {
+            return self.flux.max_value() > 0.0;
+        }
+        let p = (self.flux.max_value() / self.flux0).min(1.0);
+        if p.is_nan() || p <= 0.0 || rng.random::<f32>() >= p {
+            return false;
+        }
+        self.flux *= 1.0 / p;
+        true
     }
 }

@@ -1,6 +1,9 @@
+//! The memory a render is expected to need per pass, from its settings alone (`brume info`, and
+//! the check before a render starts).
+
 use super::gather::BVH_BYTES_PER_PRIM;
 use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord};
-use crate::scene::desc::{SceneDesc, VolumeKind};
+use super::settings::{IntegratorDesc, VolumeKind};
 
 /// Bytes of one integration volume or surface sphere excluding its segment and throughput:
 /// its record and its share of the BVH.
@@ -21,23 +24,26 @@ pub struct MemoryEstimate {
 impl MemoryEstimate {
     /// An upper estimate: every camera path reaches a medium segment thick enough to hold its
     /// full expected 1/q spheres (method note 2); surfaces add one sphere per path; no two
-    /// paths share a throughput (the worst case).
-    pub fn for_scene(d: &SceneDesc) -> Self {
-        let pixels = d.camera.width as f64 * d.camera.height as f64;
-        let paths = pixels * d.integrator.camera_samples as f64;
-        let per_path = if d.media.is_empty() {
-            1.0
-        } else {
-            match d.integrator.volume {
-                VolumeKind::Spheres => 1.0 + 1.0 / d.integrator.q as f64,
-                _ => 2.0,
+    /// paths share a throughput (the worst case). `pixels` of `bins` spectral bins; `media`:
+    /// whether the scene has any.
+    pub fn new(settings: &IntegratorDesc, pixels: u64, bins: usize, media: bool) -> Self {
+        let pixels = pixels as f64;
+        let paths = pixels * settings.camera_samples as f64;
+        let per_path = if media {
+            match settings.volume {
+                VolumeKind::Spheres => 1.0 + 1.0 / settings.q as f64,
+                VolumeKind::Cylinder | VolumeKind::CylinderTruncated | VolumeKind::CylinderLong => {
+                    2.0
+                }
             }
+        } else {
+            1.0
         };
         let gather_volumes = paths * per_path;
-        let bins = d.film.bins as f64;
+        let bins = bins as f64;
         // With media: the path's volumes, its segment with a throughput, and a surface
         // sphere with another throughput (transmission changes it in chromatic media).
-        let gather_bytes = if d.media.is_empty() {
+        let gather_bytes = if !media {
             paths * (SURFACE_BYTES + 4.0 * bins)
         } else {
             let volumes = per_path - 1.0;

@@ -4,11 +4,12 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+use super::Integrator;
 use super::camera_pass::{camera_pass, splat_direct};
 use super::gather::Gather;
-use super::light_pass::light_pass;
+use super::light_pass::{LightJob, light_pass};
 use crate::film::{Film, PassBuffer, SpectralImage};
-use crate::scene::Scene;
+use crate::world::Scene;
 
 /// How much to render.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,74 +34,55 @@ pub struct Stats {
     pub tiles: u64,
 }
 
-/// The gather memory budget in bytes: the setting, or a quarter of the machine's memory.
-pub fn gather_budget(setting: u64) -> usize {
-    if setting > 0 {
-        return setting as usize;
-    }
-    let total = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|m| {
-            m.lines()
-                .find(|l| l.starts_with("MemTotal:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
-        })
-        .map(|kib| kib * 1024)
-        .unwrap_or(8 << 30);
-    (total / 4) as usize
-}
-
+/// Renders passes of a scene with an integrator into a film.
 pub struct Renderer<'a> {
     scene: &'a Scene,
+    integrator: Integrator,
     seed: u64,
     film: Film,
     radius: f32,
     pub stats: Stats,
 }
 
-/// Radius for pass `p` (0-based) under the progressive rule R_{p+1}^2 = R_p^2 (p + a)/(p + 1)
-/// (Hachisuka & Jensen 2009, applied per pass as in Knaus & Zwicker 2011).
-pub fn radius_for_pass(r0: f32, alpha: f32, p: u64) -> f32 {
-    let mut r2 = (r0 as f64).powi(2);
-    for i in 1..=p {
-        r2 *= (i as f64 + alpha as f64) / (i as f64 + 1.0);
-    }
-    r2.sqrt() as f32
-}
-
 impl<'a> Renderer<'a> {
-    pub fn new(scene: &'a Scene, seed: u64) -> Self {
+    pub fn new(scene: &'a Scene, integrator: Integrator, seed: u64) -> Self {
         let (w, h) = scene.camera.resolution();
         Self {
             scene,
             seed,
             film: Film::new(w as usize, h as usize, scene.grid),
-            radius: scene.settings.radius,
+            radius: integrator.radius.at(0),
+            integrator,
             stats: Stats::default(),
         }
     }
 
     /// A renderer whose first pass is pass `first` of the seed's sequence (a slice of a
     /// distributed render, see `Film::merge`).
-    pub fn starting_at(scene: &'a Scene, seed: u64, first: u64) -> Self {
-        let mut r = Self::new(scene, seed);
+    pub fn starting_at(scene: &'a Scene, integrator: Integrator, seed: u64, first: u64) -> Self {
+        let mut r = Self::new(scene, integrator, seed);
         r.film.first = first;
-        r.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, first);
+        r.radius = r.integrator.radius.at(first);
         r
     }
 
     /// A renderer that continues `film` (restored from a checkpoint): the next pass is
     /// `film.end()`, rendered exactly as an uninterrupted run would render it. Fails when the
     /// film's size or spectral grid is not the scene's.
-    pub fn resume(scene: &'a Scene, seed: u64, film: Film) -> Result<Self, String> {
-        let mut r = Self::new(scene, seed);
+    pub fn resume(
+        scene: &'a Scene,
+        integrator: Integrator,
+        seed: u64,
+        film: Film,
+    ) -> Result<Self, String> {
+        let mut r = Self::new(scene, integrator, seed);
         if (film.width, film.height, film.grid) != (r.film.width, r.film.height, r.film.grid) {
             return Err(format!(
                 "the film is {}x{} pixels with {} bins, the scene renders {}x{} with {}",
                 film.width, film.height, film.grid.n, r.film.width, r.film.height, r.film.grid.n
             ));
         }
-        r.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, film.end());
+        r.radius = r.integrator.radius.at(film.end());
         r.film = film;
         Ok(r)
     }
@@ -118,6 +100,11 @@ impl<'a> Renderer<'a> {
         self.film.image()
     }
 
+    /// The integrator rendering the passes.
+    pub fn integrator(&self) -> &Integrator {
+        &self.integrator
+    }
+
     /// The radius the next pass will use.
     pub fn radius(&self) -> f32 {
         self.radius
@@ -127,30 +114,50 @@ impl<'a> Renderer<'a> {
     /// of the whole image would exceed `integrator.max_gather_bytes`, the pass is split into
     /// tiles of rows, each with its own gather structure and light pass.
     pub fn render_pass(&mut self) {
-        let scene = self.scene;
+        self.render_pass_until(&AtomicBool::new(false));
+    }
+
+    /// `render_pass`, abandoned (nothing added to the film, false returned) as soon as `stop`
+    /// is set: between rows of the camera pass and between chunks of forward rays, so that an
+    /// interrupt never waits for a long pass.
+    pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
+        let (scene, integrator) = (self.scene, &self.integrator);
         let pass = self.film.end();
-        self.radius = radius_for_pass(scene.settings.radius, scene.settings.alpha, pass);
+        self.radius = integrator.radius.at(pass);
         let (w, h) = scene.camera.resolution();
         let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
-        let spp = scene.settings.camera_samples as f32;
-        let norm = 1.0 / (scene.settings.forward_rays as f32 * spp);
-        let budget = gather_budget(scene.settings.max_gather_bytes);
+        let settings = &integrator.settings;
+        let spp = settings.camera_samples as f32;
+        let norm = 1.0 / (settings.forward_rays as f32 * spp);
+        let budget = settings.gather_budget();
         let mut row = 0;
         let mut tile = 0u64;
         while row < h {
             let t0 = Instant::now();
-            let (mut out, next) = camera_pass(scene, self.seed, pass, row, budget);
+            let Some((mut out, next)) =
+                camera_pass(scene, integrator, self.seed, pass, row, budget, stop)
+            else {
+                return false;
+            };
             let t1 = Instant::now();
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
-            let gather = Gather::from_output(&scene.media, self.radius, &mut out);
+            let gather = Gather::from_output(&integrator.estimator, self.radius, &mut out);
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
-            light_pass(scene, &gather, self.seed, pass, tile, norm, &mut buf);
+            let light = LightJob {
+                seed: self.seed,
+                pass,
+                tile,
+                norm,
+            };
+            if !light_pass(scene, integrator, &gather, &light, &mut buf, stop) {
+                return false;
+            }
             splat_direct(&out, &mut buf, 1.0 / spp);
             let t3 = Instant::now();
             self.stats.camera_paths += out.paths;
-            self.stats.forward_rays += scene.settings.forward_rays;
+            self.stats.forward_rays += settings.forward_rays;
             self.stats.camera_seconds += (t1 - t0).as_secs_f64();
             self.stats.build_seconds += (t2 - t1).as_secs_f64();
             self.stats.light_seconds += (t3 - t2).as_secs_f64();
@@ -159,6 +166,7 @@ impl<'a> Renderer<'a> {
             tile += 1;
         }
         self.film.add_pass(&buf);
+        true
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.
@@ -169,9 +177,8 @@ impl<'a> Renderer<'a> {
         });
     }
 
-    /// Like `run`, but stops before starting a pass once `stop` is set (an interrupt: the pass
-    /// in flight is finished, so every pass in the film is whole). Returns true when stopped
-    /// early. `after_pass(film, seconds)` sees the film after each pass (to report progress or
+    /// Like `run`, but stops once `stop` is set (an interrupt): the pass in flight is abandoned,
+    /// so every pass in the film is whole. Returns true when stopped early. `after_pass(film, seconds)` sees the film after each pass (to report progress or
     /// save a checkpoint).
     pub fn run_until(
         &mut self,
@@ -189,10 +196,9 @@ impl<'a> Renderer<'a> {
             if done {
                 return false;
             }
-            if stop.load(Ordering::SeqCst) {
+            if stop.load(Ordering::SeqCst) || !self.render_pass_until(stop) {
                 return true;
             }
-            self.render_pass();
             after_pass(&self.film, start.elapsed().as_secs_f64());
         }
     }

@@ -5,6 +5,8 @@
 use glam::{Vec2, Vec3};
 
 use super::oct::Oct;
+use super::throughput::ThroughputTable;
+use crate::spectrum::Spectrum;
 
 /// Classes of forward light a volume collects (method note 6): C = direct, caustic and
 /// medium-scattered only; D = reflected by a diffuse surface at least once.
@@ -29,23 +31,6 @@ pub struct SurfaceRecord {
     pub scale: f32,
 }
 
-/// Shape of an integration volume in a medium.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u8)]
-pub enum VolumeShape {
-    /// Sphere at distance `s` on the segment; weight = throughput * the sphere's per-bin factor
-    /// `sigma_s,l e^{-(st_l - st_min) s} * scale` (method notes 2/3, `walk_scaled`).
-    Sphere,
-    /// Cylinder over the segment's first `s` metres with deterministic transmittance (eq. 2);
-    /// weight = camera throughput.
-    Cylinder,
-    /// Cylinder ending at the sampled extinction (note 5b); weight = throughput, and the
-    /// channel probabilities P are the camera mixture's, recomputed from the throughput.
-    Truncated,
-    /// Paper eq. 3; weight = camera throughput.
-    Long,
-}
-
 /// One camera segment in a medium that left at least one integration volume: what all its
 /// volumes share.
 #[derive(Clone, Copy, Debug)]
@@ -57,20 +42,66 @@ pub struct SegmentRecord {
     /// Camera throughput at the segment's start (index into the pass's throughput table).
     pub throughput: u32,
     pub medium: u16,
-    pub shape: VolumeShape,
     /// Bit mask of CLASS_C / CLASS_D.
     pub classes: u8,
 }
 
 /// One integration volume: a sphere at `origin + dir * s`, or a cylinder over `[0, s]` of its
-/// segment.
+/// segment, as the render's `Estimator` has it.
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeRecord {
     pub segment: u32,
     /// Distance along the segment (spheres) or length (cylinders).
     pub s: f32,
-    /// Spheres: `q / pdf_mix(s)`, scaled as `MixEval`; cylinders: unused (1).
+    /// Spheres: `q / pdf_mix(s)`, scaled as `MixEval` (see `estimator::sphere_weight`);
+    /// cylinders: unused (1).
     pub scale: f32,
+}
+
+/// What one row (or any batch of pixels) of the camera pass produced: the records the gather
+/// structure is built from, and what the camera paths saw directly.
+#[derive(Default)]
+pub struct CameraOutput {
+    pub surfaces: Vec<SurfaceRecord>,
+    /// Camera segments in media that left volumes; `volumes` point into it.
+    pub segments: Vec<SegmentRecord>,
+    pub volumes: Vec<VolumeRecord>,
+    /// Distinct camera throughputs, shared by the records.
+    pub throughputs: ThroughputTable,
+    /// Radiance seen directly (emitters), per pixel of the batch: (pixel, value).
+    pub direct: Vec<(u32, Spectrum)>,
+    /// Camera paths started.
+    pub paths: u64,
+}
+
+impl CameraOutput {
+    /// An empty output for spectra of `n` bins.
+    pub fn new(n: usize) -> Self {
+        Self {
+            throughputs: ThroughputTable::new(n),
+            ..Self::default()
+        }
+    }
+
+    /// Appends `other`, rebasing its segment and throughput indices.
+    pub fn append(&mut self, mut other: CameraOutput) {
+        let remap = self.throughputs.merge(&other.throughputs);
+        let base = self.segments.len() as u32;
+        other
+            .surfaces
+            .iter_mut()
+            .for_each(|s| s.throughput = remap[s.throughput as usize]);
+        other
+            .segments
+            .iter_mut()
+            .for_each(|s| s.throughput = remap[s.throughput as usize]);
+        other.volumes.iter_mut().for_each(|v| v.segment += base);
+        self.surfaces.append(&mut other.surfaces);
+        self.segments.append(&mut other.segments);
+        self.volumes.append(&mut other.volumes);
+        self.direct.append(&mut other.direct);
+        self.paths += other.paths;
+    }
 }
 
 impl SegmentRecord {

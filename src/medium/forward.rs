@@ -27,9 +27,10 @@ pub enum FlightEnd {
     /// Left the segment at `seg_len` with the flux updated by `e^{-st_l T} / Tmix(T)`.
     Escaped,
     /// Collided and scattered at `t` (flux updated by `ss_l e^{-st_l t} / pdf_mix(t)`, absorption
-    /// by weight, then survived Russian roulette): sample a new direction from the phase function.
+    /// by weight): sample a new direction from the phase function.
     Scattered { t: f32 },
-    /// Collided at `t` and was killed by Russian roulette.
+    /// Collided at `t` where the mixture's density underflowed (about 100 mean free paths deep
+    /// in every bin): the ray carries nothing on.
     Killed { t: f32 },
 }
 
@@ -71,17 +72,10 @@ impl ForwardFlight {
         *flux * self.mix.survival_weight(s)
     }
 
-    /// Applies the end-of-flight update to `flux`. `rr_threshold`: when the largest bin of the
-    /// collided flux falls below it, the ray survives with probability `max / rr_threshold` and is
-    /// reweighted (`0` disables roulette).
+    /// Applies the end-of-flight update to `flux`. Russian roulette is the caller's (the
+    /// forward path's rule, after the event).
     #[inline]
-    pub fn finish<R: Rng + ?Sized>(
-        &self,
-        medium: &HomogeneousMedium,
-        flux: &mut Spectrum,
-        rr_threshold: f32,
-        rng: &mut R,
-    ) -> FlightEnd {
+    pub fn finish(&self, medium: &HomogeneousMedium, flux: &mut Spectrum) -> FlightEnd {
         if self.escapes() {
             *flux *= self.mix.survival_weight(self.seg_len);
             return FlightEnd::Escaped;
@@ -91,15 +85,6 @@ impl ForwardFlight {
             return FlightEnd::Killed { t: self.t };
         }
         *flux *= medium.sigma_s * e.tr * (1.0 / e.pdf);
-        let m = flux.max_value();
-        if m < rr_threshold {
-            let p = m / rr_threshold;
-            if rng.random::<f32>() >= p {
-                *flux = Spectrum::ZERO;
-                return FlightEnd::Killed { t: self.t };
-            }
-            *flux *= 1.0 / p;
-        }
         FlightEnd::Scattered { t: self.t }
     }
 }

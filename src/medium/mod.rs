@@ -19,4 +19,4 @@ pub use homogeneous::HomogeneousMedium;
 pub use mixture::{ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, relative_extinction};
 pub use phase::HenyeyGreenstein;
 pub use spectral::power_law;
-pub use walk::{MultiSphereWalk, StepRate, WalkEnd, sample_extinction};
+pub use walk::{MultiSphereWalk, WalkEnd, sample_extinction};

@@ -10,38 +10,14 @@ use super::desc::{LightKind, MaterialKind, ShapeKindDesc, SpectrumRef};
 use super::error::{KeyText, Origin, SceneError};
 use super::spectra::SpectrumResolver;
 use crate::camera::Camera;
-use crate::geometry::{self, Geometry, Ray, ShapeKind, Transform};
+use crate::geometry::{self, Geometry, ShapeKind, Transform};
+use crate::integrator::Integrator;
 use crate::light::{Light, LightSet};
 use crate::material::{Albedo, Material, Texture};
-use crate::medium::{HomogeneousMedium, MultiSphereWalk};
-use crate::scene::desc::{IntegratorDesc, Projection, SceneDesc};
-use crate::spectrum::{SpectralGrid, Spectrum};
-
-/// Everything a render needs, built once and shared read-only by all workers.
-pub struct Scene {
-    pub grid: SpectralGrid,
-    pub camera: Camera,
-    pub geometry: Geometry,
-    pub materials: Vec<Material>,
-    pub media: Vec<HomogeneousMedium>,
-    pub lights: LightSet,
-    /// Medium around the camera (ray start).
-    pub camera_medium: Option<u32>,
-    /// Medium outside every shape.
-    pub outside_medium: Option<u32>,
-    /// Per medium: bounded only by index-matched (null) boundaries, so that its integration
-    /// volumes may gather forward rays outside it (method note 8).
-    pub open: Vec<bool>,
-    /// Whether any medium is open.
-    pub open_media: bool,
-    /// The world box: paths that leave it end (media are taken to stop there).
-    pub world_min: Vec3,
-    pub world_max: Vec3,
-    pub settings: IntegratorDesc,
-    /// The camera-side multi-sphere walk with the scene's q.
-    pub walk: MultiSphereWalk,
-    pub desc: SceneDesc,
-}
+use crate::medium::HomogeneousMedium;
+use crate::scene::desc::Projection;
+use crate::spectrum::Spectrum;
+use crate::world::Scene;
 
 fn err(scene: &LoadedScene, key: String, message: String) -> SceneError {
     SceneError::Invalid {
@@ -292,51 +268,13 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         outside_medium: outside,
         world_min,
         world_max,
-        settings: d.integrator.clone(),
-        walk: MultiSphereWalk::new(d.integrator.q)
-            .map_err(|e| err(scene, "integrator.q".into(), e.to_string()))?,
-        desc: d.clone(),
     };
     scene_out.camera_medium = scene_out.medium_at(v3(c.position));
     Ok(scene_out)
 }
 
-impl Scene {
-    /// The medium containing point `p`: found from the first boundary a ray from `p` meets
-    /// (inside that shape if the ray leaves through it), else the scene's outside medium.
-    pub fn medium_at(&self, p: Vec3) -> Option<u32> {
-        // Outside every shape's bounds nothing encloses p (e.g. a directional light's rays
-        // start there): no ray needed.
-        let b = self.geometry.bounds();
-        let (lo, hi) = (b.min, b.max);
-        if p.cmplt(lo).any() || p.cmpgt(hi).any() {
-            return self.outside_medium;
-        }
-        // An irrational-ish direction avoids grazing axis-aligned edges.
-        let d = Vec3::new(0.301, 0.812, 0.5).normalize();
-        match self.geometry.intersect(&Ray { o: p, d }, f32::INFINITY) {
-            Some(h) => {
-                let shape = self.geometry.shape(h.shape);
-                if d.dot(h.ng) > 0.0 {
-                    shape.interior
-                } else {
-                    shape.exterior
-                }
-            }
-            None => self.outside_medium,
-        }
-    }
-
-    pub fn open_medium(&self, m: u32) -> bool {
-        self.open.get(m as usize).copied().unwrap_or(false)
-    }
-
-    /// Distance along `ray` to the world box's far side (0 if it starts outside and misses).
-    pub fn world_exit(&self, ray: &Ray) -> f32 {
-        let inv = ray.d.recip();
-        let t0 = (self.world_min - ray.o) * inv;
-        let t1 = (self.world_max - ray.o) * inv;
-        let far = t0.max(t1).min_element();
-        if far.is_finite() { far.max(0.0) } else { 0.0 }
-    }
+/// The integrator the scene file's `[integrator]` table describes, for its built `scene`.
+pub fn build_integrator(loaded: &LoadedScene, scene: &Scene) -> Result<Integrator, SceneError> {
+    Integrator::from_desc(&loaded.desc.integrator, scene)
+        .map_err(|e| err(loaded, "integrator.q".into(), e.to_string()))
 }

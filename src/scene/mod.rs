@@ -10,6 +10,7 @@ mod spectra;
 pub mod summary;
 pub mod validate;
 
-pub use build::{Scene, build};
+pub use crate::world::Scene;
+pub use build::{build, build_integrator};
 pub use error::{Origin, SceneError};
 pub use load::{LoadedScene, load, load_str};

@@ -41,7 +41,12 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
         q: d.integrator.q,
         radius: d.integrator.radius,
         forward_rays: d.integrator.forward_rays,
-        memory: crate::integrator::MemoryEstimate::for_scene(d),
+        memory: crate::integrator::MemoryEstimate::new(
+            &d.integrator,
+            d.camera.width as u64 * d.camera.height as u64,
+            d.film.bins,
+            !d.media.is_empty(),
+        ),
     }
 }
 

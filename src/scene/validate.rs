@@ -300,35 +300,7 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     c.positive("camera.view_width", cam.view_width as f64);
     c.positive("camera.view_height", cam.view_height as f64);
 
-    let it = &d.integrator;
-    c.positive("integrator.radius", it.radius as f64);
-    if !(it.alpha > 0.0 && it.alpha <= 1.0) {
-        c.fail(
-            "integrator.alpha",
-            format!("must be in (0, 1], got {}", it.alpha),
-        );
-    }
-    if !(it.q > 0.0 && it.q <= 1.0) {
-        c.fail("integrator.q", format!("must be in (0, 1], got {}", it.q));
-    }
-    if !(1..=1_000_000_000_000).contains(&it.forward_rays) {
-        c.fail(
-            "integrator.forward_rays",
-            format!("must be in 1..=1e12, got {}", it.forward_rays),
-        );
-    }
-    if !(1..=4096).contains(&it.camera_samples) {
-        c.fail("integrator.camera_samples", "must be in 1..=4096");
-    }
-    if !(1..=4096).contains(&it.max_depth) {
-        c.fail("integrator.max_depth", "must be in 1..=4096");
-    }
-    if !(it.channel_floor > 0.0 && it.channel_floor <= 1.0) {
-        c.fail("integrator.channel_floor", "must be in (0, 1]");
-    }
-    if it.passes == 0 {
-        c.fail("integrator.passes", "must be at least 1");
-    }
+    d.integrator.check(|k, m| c.fail(k, m));
 
     for (name, s) in &d.spectra {
         c.named_spectrum(&format!("spectra.{name}"), s);

@@ -9,7 +9,7 @@ use super::metrics::{LayerErrors, layer_errors, mean_error, mean_noise};
 use super::reference::{Reference, layer};
 use super::variants::Variant;
 use crate::integrator::Renderer;
-use crate::scene::{build, load};
+use crate::scene::{build, build_integrator, load};
 
 #[derive(Clone, Debug)]
 pub struct StudyConfig {
@@ -84,7 +84,8 @@ pub fn render_for(
 ) -> Result<(), StudyError> {
     let loaded = load(scene_file, sets)?;
     let scene = build(&loaded)?;
-    let mut r = Renderer::new(&scene, seed);
+    let integrator = build_integrator(&loaded, &scene)?;
+    let mut r = Renderer::new(&scene, integrator, seed);
     let mut spent = 0.0;
     loop {
         let t0 = Instant::now();

@@ -4,18 +4,48 @@
 use std::path::Path;
 
 use brume::film::SpectralImage;
-use brume::integrator::{Budget, Renderer};
-use brume::scene::{Scene, build, load_str};
+use brume::integrator::{Budget, Integrator, Renderer};
+use brume::scene::{Scene, build, build_integrator, load_str};
 
-pub fn scene(text: &str, sets: &[&str]) -> Scene {
+/// A built scene and the integrator its file describes; derefs to the scene.
+pub struct Setup {
+    pub scene: Scene,
+    pub integrator: Integrator,
+}
+
+impl std::ops::Deref for Setup {
+    type Target = Scene;
+    fn deref(&self) -> &Scene {
+        &self.scene
+    }
+}
+
+impl Setup {
+    /// A renderer of this scene with its integrator.
+    pub fn renderer(&self, seed: u64) -> Renderer<'_> {
+        Renderer::new(&self.scene, self.integrator.clone(), seed)
+    }
+}
+
+pub fn scene(text: &str, sets: &[&str]) -> Setup {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
     let loaded = load_str(text, &dir, &sets).unwrap_or_else(|e| panic!("{e}"));
-    build(&loaded).unwrap_or_else(|e| panic!("{e}"))
+    let scene = build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    let integrator = build_integrator(&loaded, &scene).unwrap_or_else(|e| panic!("{e}"));
+    Setup { scene, integrator }
 }
 
-pub fn render(scene: &Scene, seed: u64, passes: u32) -> SpectralImage {
-    let mut r = Renderer::new(scene, seed);
+/// Loads and builds a scene file with `--set` overrides.
+pub fn scene_file(file: &Path, sets: &[String]) -> Setup {
+    let loaded = brume::scene::load(file, sets).unwrap_or_else(|e| panic!("{e}"));
+    let scene = build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    let integrator = build_integrator(&loaded, &scene).unwrap_or_else(|e| panic!("{e}"));
+    Setup { scene, integrator }
+}
+
+pub fn render(setup: &Setup, seed: u64, passes: u32) -> SpectralImage {
+    let mut r = setup.renderer(seed);
     r.run(Budget::Passes(passes), |_, _| {});
     r.image()
 }
@@ -45,7 +75,7 @@ pub fn region_mean(
 
 /// Independent renders (different seeds) of a region's per-bin mean: (mean, standard error).
 pub fn independent_estimates(
-    scene: &Scene,
+    scene: &Setup,
     runs: u64,
     passes: u32,
     region: (usize, usize, usize, usize),

@@ -4,7 +4,6 @@
 
 mod camera;
 mod film;
-mod integrator;
 mod lights;
 mod materials;
 mod media;
@@ -15,9 +14,9 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
 pub use camera::{CameraDesc, Projection};
 pub use film::FilmDesc;
-pub use integrator::{ChannelPickDesc, GatherMode, IntegratorDesc, VolumeKind};
 pub use lights::{LightDesc, LightKind};
 pub use materials::{MaterialDesc, MaterialKind};
 pub use media::MediumDesc;

@@ -2,32 +2,39 @@
 //! target: <= 64 bytes), counted from a real camera pass, not from constants.
 
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
-use brume::integrator::camera_pass::camera_pass;
-use brume::integrator::gather::Gather;
-use brume::scene::{Scene, build, load_str};
+use crate::integrator::Integrator;
+use crate::integrator::camera_pass::camera_pass;
+use crate::integrator::gather::{Gather, bytes_for};
+use crate::scene::{build, build_integrator, load};
+use crate::world::Scene;
 
-fn scene(file: &str, sets: &[&str]) -> Scene {
+fn scene(file: &str, sets: &[&str]) -> (Scene, Integrator) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("scenes")
         .join(file);
-    let text = std::fs::read_to_string(&path).unwrap();
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    build(&load_str(&text, &path, &sets).unwrap()).unwrap()
+    let loaded = load(&path, &sets).unwrap();
+    let scene = build(&loaded).unwrap();
+    let integrator = build_integrator(&loaded, &scene).unwrap();
+    (scene, integrator)
 }
 
 /// (bytes per sphere over all spheres, bytes per volume sphere of the volume part alone,
 /// volume spheres) of one untiled pass.
-fn bytes_per_sphere(s: &Scene) -> (f64, f64, usize) {
-    let (mut out, rows) = camera_pass(s, 1, 0, 0, usize::MAX);
+fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) {
+    let never = AtomicBool::new(false);
+    let (mut out, rows) = camera_pass(s, integrator, 1, 0, 0, usize::MAX, &never).unwrap();
     assert_eq!(rows, s.camera.resolution().1);
     let (surfaces, volumes) = (out.surfaces.len(), out.volumes.len());
-    let predicted = out.gather_bytes();
-    let g = Gather::from_output(&s.media, s.settings.radius, &mut out);
+    let predicted = bytes_for(&out);
+    let radius = integrator.settings.radius;
+    let g = Gather::from_output(&integrator.estimator, radius, &mut out);
     let bytes = g.bytes();
     // Without the surface spheres: the volume part's own bytes.
     let volume_part = Gather::new(
-        &s.media,
+        &integrator.estimator,
         g.radius,
         Vec::new(),
         g.segments.clone(),
@@ -68,7 +75,7 @@ fn fog_cube_gather_holds_at_most_64_bytes_per_sphere() {
 }
 
 /// The figures for docs/performance.md (not a check):
-/// `cargo test --test gather_bytes -- --ignored --nocapture`.
+/// `cargo test --lib gather_bytes -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn report_bytes_per_sphere() {

@@ -18,22 +18,14 @@ pub enum WalkEnd {
     Transmitted { weight: Spectrum },
 }
 
-/// Sub-step rate of the multi-sphere walk.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StepRate {
-    /// `alpha = st_l0 / q` (method note 2-3). The only correct choice.
-    SigmaTOverQ,
-    /// `alpha = q st_l0`, as printed in the paper's colour section. BIASED: exists only so that a
-    /// test can prove it wrong. Never expose it to users.
-    PaperTypoBiased,
-}
-
 /// The camera-side multiple-integration-sphere walk along one medium segment (method note 2).
 /// `q = 1` is the single sphere at the first extinction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MultiSphereWalk {
     q: f32,
-    rate: StepRate,
+    /// Sub-step rate over `st_l0`: `1 / q` (method notes 2-3). Only the test of the paper's
+    /// typo builds another.
+    rate_scale: f32,
 }
 
 impl MultiSphereWalk {
@@ -43,19 +35,21 @@ impl MultiSphereWalk {
         if q > 0.0 && q <= 1.0 {
             Ok(Self {
                 q,
-                rate: StepRate::SigmaTOverQ,
+                rate_scale: 1.0 / q,
             })
         } else {
             Err(MediumError::Q(q))
         }
     }
 
-    /// The paper's typo (rate `q st`), known to be biased. For the test that proves it only.
-    #[doc(hidden)]
-    pub fn paper_typo_biased(q: f32) -> Result<Self, MediumError> {
-        let mut w = Self::new(q)?;
-        w.rate = StepRate::PaperTypoBiased;
-        Ok(w)
+    /// The paper's colour section as printed (rate `q st`), known to be biased: for the test
+    /// that proves it only.
+    #[cfg(test)]
+    pub(crate) fn paper_typo_biased(q: f32) -> Result<Self, MediumError> {
+        Ok(Self {
+            rate_scale: q,
+            ..Self::new(q)?
+        })
     }
 
     /// The control parameter q.
@@ -123,14 +117,10 @@ impl MultiSphereWalk {
         R: Rng + ?Sized,
         F: FnMut(f32, &MixEval),
     {
-        let rate_scale = match self.rate {
-            StepRate::SigmaTOverQ => 1.0 / self.q,
-            StepRate::PaperTypoBiased => self.q,
-        };
         let l0 = mix.pick(rng.random());
         let mut s = 0.0f32;
         loop {
-            s += mix.exp_step(l0, rate_scale, rng.random());
+            s += mix.exp_step(l0, self.rate_scale, rng.random());
             if s >= seg_len || s.is_nan() {
                 return transmitted(mix, seg_len);
             }
@@ -196,3 +186,6 @@ fn extinction<R: Rng + ?Sized>(
         WalkEnd::Absorbed { s }
     }
 }
+
+#[cfg(test)]
+mod tests;

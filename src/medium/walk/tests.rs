@@ -6,16 +6,12 @@
 //! z-bounds: |z| < 4 for every bin of every correct configuration; the paper's typo rate must be
 //! off by |z| > 10 in at least one bin.
 
-#[path = "estimator_stats.rs"]
-mod stats;
-
-use brume::medium::{
-    ChannelPick, HomogeneousMedium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction,
-};
-use brume::spectrum::Spectrum;
+use super::{MultiSphereWalk, WalkEnd, sample_extinction};
+use crate::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use crate::spectrum::Spectrum;
+use crate::test_stats::Acc;
 use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
-use stats::Acc;
 
 const N: usize = 4;
 /// Very different extinctions (1/m) and albedos per bin.

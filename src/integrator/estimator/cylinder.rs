@@ -1,7 +1,81 @@
-use crate::medium::HomogeneousMedium;
-use crate::spectrum::Spectrum;
+//! The integration cylinder of paper eq. 2 (method note 5a): the camera path leaves one cylinder
+//! over its whole medium segment and, in `first-extinction` mode, passes through it with the
+//! deterministic transmittance `e^{-st_l T}` instead of sampling an extinction. A forward segment
+//! whose chord crosses it adds `ss_l f Phi_l / (pi R^2) * ∫_chord e^{-st_l tau(lam)} dlam`. Also
+//! the cylinder geometry that truncated and long cylinders share.
+
 use glam::Vec3;
+use obvhs::aabb::Aabb;
+use rand::Rng;
 use std::f32::consts::PI;
+
+use super::{
+    CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds, chord_integral, panels_for,
+};
+use crate::integrator::record::{SegmentRecord, VolumeRecord};
+use crate::medium::{HomogeneousMedium, Mixture, WalkEnd, sample_extinction};
+use crate::spectrum::Spectrum;
+
+/// Paper eq. 2: deterministic camera transmittance over the whole segment.
+#[derive(Clone, Copy, Debug)]
+pub struct Cylinder;
+
+impl VolumeEstimator for Cylinder {
+    const WHOLE_FORWARD_SEGMENT: bool = false;
+
+    #[inline]
+    fn camera_segment<R: Rng + ?Sized>(
+        &self,
+        cam: &CameraSegment,
+        rng: &mut R,
+        leave: impl FnMut(f32, f32),
+    ) -> WalkEnd {
+        whole_segment(cam, rng, leave)
+    }
+
+    #[inline]
+    fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
+        capsule_bounds(seg.origin, seg.at(v.s), radius)
+    }
+
+    #[inline]
+    fn contribution(
+        &self,
+        f: &ForwardSegment,
+        seg: &SegmentRecord,
+        v: &VolumeRecord,
+        _w: &[f32],
+        med: &HomogeneousMedium,
+        radius: f32,
+    ) -> Option<Spectrum> {
+        let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
+        let k = match f.flight {
+            Some(fl) => cylinder_eq2_fwd(med, fl.mixture(), &chord, radius),
+            None => cylinder_eq2(med, &chord, radius),
+        };
+        Some(*f.flux * k * med.phase.eval(-f.d.dot(seg.dir)))
+    }
+}
+
+/// The camera side of the cylinders over whole segments (eq. 2 and eq. 3): one cylinder over
+/// `[0, len]`; the path passes through with the deterministic transmittance in
+/// `first-extinction` mode, and samples where it scatters on in `see-through` mode (where the
+/// cylinder gathers only class C light and the path goes on gathering nothing).
+#[inline]
+pub(super) fn whole_segment<R: Rng + ?Sized>(
+    cam: &CameraSegment,
+    rng: &mut R,
+    mut leave: impl FnMut(f32, f32),
+) -> WalkEnd {
+    leave(cam.len, 1.0);
+    if cam.first_extinction {
+        WalkEnd::Transmitted {
+            weight: cam.medium.sigma_t.transmittance(cam.len, cam.medium.n),
+        }
+    } else {
+        sample_extinction(cam.medium, cam.mix, cam.len, rng)
+    }
+}
 
 /// The axis of an integration cylinder: a camera segment in a medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,6 +86,18 @@ pub struct CameraAxis {
     pub dir: Vec3,
     /// Axial length `T` (finite).
     pub len: f32,
+}
+
+impl CameraAxis {
+    /// The axis of the cylinder volume `v` of camera segment `seg`: its first `v.s` metres.
+    #[inline]
+    pub fn of(seg: &SegmentRecord, v: &VolumeRecord) -> Self {
+        Self {
+            origin: seg.origin,
+            dir: seg.dir,
+            len: v.s,
+        }
+    }
 }
 
 /// The part of a forward segment inside a finite, flat-capped cylinder.
@@ -142,4 +228,33 @@ pub fn cylinder_eq2(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -
         out.0[l] = medium.sigma_s.0[l] * k * eq2_factor(medium.sigma_t.0[l], chord);
     }
     out
+}
+
+/// Eq. 2 (deterministic camera transmittance `e^{-st_l tau}`) for a colour forward flight whose
+/// flux at `lam` is `Phi_l e^{-st_l lam} / Tmix_fwd(lam)` (see `medium::ForwardFlight`): the
+/// closed form of `cylinder_eq2` assumes constant flux along the chord and is biased by
+/// O(chord x sigma_t spread) here. Composite Gauss–Legendre.
+#[inline]
+pub fn cylinder_eq2_fwd(
+    medium: &HomogeneousMedium,
+    fwd: &Mixture,
+    chord: &CylinderChord,
+    r: f32,
+) -> Spectrum {
+    if fwd.sigma_t_span() == 0.0 {
+        // Grey forward flight: its flux is constant along the chord, eq. 2's closed form is exact.
+        return cylinder_eq2(medium, chord, r);
+    }
+    let k = 1.0 / (PI * r * r);
+    let c = chord.len();
+    let st_max = medium.sigma_t.max_value();
+    let span = st_max * (chord.tau2 - chord.tau1).abs() + fwd.sigma_t_span() * c;
+    let n = medium.n;
+    let integral = chord_integral(c, panels_for(span), |x| {
+        let tau = chord.tau1 + chord.uv * x;
+        let mut cw = medium.sigma_t.transmittance(tau, n);
+        cw *= fwd.survival_weight(chord.lam1 + x);
+        cw
+    });
+    medium.sigma_s * integral * k
 }

@@ -1,0 +1,155 @@
+//! The integration-volume estimators (the paper, method notes 1-5), one file each:
+//!
+//! - `spheres.rs`: stochastic spheres along the camera segment, control parameter q (q = 1 is
+//!   the single sphere at the extinction);
+//! - `cylinder.rs`: the cylinder over the whole segment with deterministic transmittance
+//!   (paper eq. 2), and the cylinder geometry the other cylinders share;
+//! - `truncated.rs`: the cylinder ending at the sampled extinction (note 5b);
+//! - `long.rs`: paper eq. 3 in exact form (deterministic attenuation along forward segments).
+//!
+//! Each provides the three pieces of [`VolumeEstimator`]: what the camera side leaves on a medium
+//! segment, the bounds the gather structure indexes, and what one forward segment contributes
+//! to one volume. [`Estimator`] is the closed set; dispatching on it once per forward segment
+//! (not per volume) keeps the per-volume code monomorphic.
+//!
+//! Conventions: the camera ray direction `u` points from the camera into the scene; a forward
+//! ray travels along `v`; distances along the forward segment are `lam` (from its origin), along
+//! the camera segment `tau`. The phase function is evaluated at `cos = -u.v` (light turning from
+//! `v` towards the camera). The weight functions exclude the phase function, the forward flux
+//! and the camera throughput unless they say otherwise.
+
+mod cylinder;
+mod long;
+mod quadrature;
+mod spheres;
+mod truncated;
+
+use glam::Vec3;
+use obvhs::aabb::Aabb;
+use rand::Rng;
+
+use super::record::{SegmentRecord, VolumeRecord};
+use super::settings::{IntegratorDesc, VolumeKind};
+use crate::medium::{ForwardFlight, HomogeneousMedium, MediumError, Mixture, WalkEnd};
+use crate::spectrum::Spectrum;
+
+pub use cylinder::{
+    CameraAxis, Cylinder, CylinderChord, cylinder_eq2, cylinder_eq2_fwd, eq2_factor,
+    segment_cylinder,
+};
+pub use long::{LongCylinder, long_eq3_exact};
+pub use quadrature::{GL4_NODES, GL4_WEIGHTS, chord_integral, panels_for};
+pub use spheres::{
+    SphereChord, Spheres, crossing_density, segment_sphere, sphere_weight, track_length_density,
+};
+pub use truncated::{TruncatedCylinder, cylinder_truncated};
+
+/// One camera segment in a medium, as the camera side of an estimator sees it.
+pub struct CameraSegment<'a> {
+    pub medium: &'a HomogeneousMedium,
+    /// The segment's spectral mixture (method note 3).
+    pub mix: &'a Mixture,
+    /// Length to the surface or boundary ahead (may be `+inf`).
+    pub len: f32,
+    /// The camera path ends at its first real extinction (`first-extinction` mode) rather than
+    /// scattering on through the medium (`see-through`).
+    pub first_extinction: bool,
+}
+
+/// A forward segment `o + d lam`, `lam in [0, len]`, being gathered.
+pub struct ForwardSegment<'a> {
+    pub o: Vec3,
+    pub d: Vec3,
+    pub len: f32,
+    /// Flux at the segment's start.
+    pub flux: &'a Spectrum,
+    /// The flight when the flux changes along the segment (a colour flight in a chromatic
+    /// medium); None for grey flights and outside media, where the flux is constant.
+    pub flight: Option<&'a ForwardFlight>,
+}
+
+/// The three pieces every integration volume provides.
+pub trait VolumeEstimator {
+    /// Forward segments count along their whole length (not only up to their sampled
+    /// collision), and only in the volume's own medium: paper eq. 3 integrates the forward
+    /// attenuation itself.
+    const WHOLE_FORWARD_SEGMENT: bool;
+
+    /// Leaves the volumes of one camera segment through `leave(s, scale)` (a distance along the
+    /// segment and a scalar weight the record keeps) and says how the path goes on.
+    fn camera_segment<R: Rng + ?Sized>(
+        &self,
+        cam: &CameraSegment,
+        rng: &mut R,
+        leave: impl FnMut(f32, f32),
+    ) -> WalkEnd;
+
+    /// The box the gather structure indexes one volume by.
+    fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb;
+
+    /// What forward segment `f` adds to volume `v` of camera segment `seg` in medium `med`, per
+    /// bin, before the camera throughput `w` (which truncated cylinders also read); None when it
+    /// misses the volume.
+    fn contribution(
+        &self,
+        f: &ForwardSegment,
+        seg: &SegmentRecord,
+        v: &VolumeRecord,
+        w: &[f32],
+        med: &HomogeneousMedium,
+        radius: f32,
+    ) -> Option<Spectrum>;
+}
+
+/// The integration volume of a render (`integrator.volume`, with `q` for spheres).
+#[derive(Clone, Debug)]
+pub enum Estimator {
+    Spheres(Spheres),
+    Cylinder(Cylinder),
+    TruncatedCylinder(TruncatedCylinder),
+    LongCylinder(LongCylinder),
+}
+
+impl Estimator {
+    /// The estimator the settings name, for a scene with `media`.
+    pub fn from_desc(
+        desc: &IntegratorDesc,
+        media: &[HomogeneousMedium],
+    ) -> Result<Self, MediumError> {
+        Ok(match desc.volume {
+            VolumeKind::Spheres => Estimator::Spheres(Spheres::new(desc.q, media)?),
+            VolumeKind::Cylinder => Estimator::Cylinder(Cylinder),
+            VolumeKind::CylinderTruncated => {
+                Estimator::TruncatedCylinder(TruncatedCylinder::new(desc.channels()))
+            }
+            VolumeKind::CylinderLong => Estimator::LongCylinder(LongCylinder),
+        })
+    }
+
+    /// See [`VolumeEstimator::WHOLE_FORWARD_SEGMENT`].
+    pub fn whole_forward_segment(&self) -> bool {
+        match self {
+            Estimator::Spheres(_) => Spheres::WHOLE_FORWARD_SEGMENT,
+            Estimator::Cylinder(_) => Cylinder::WHOLE_FORWARD_SEGMENT,
+            Estimator::TruncatedCylinder(_) => TruncatedCylinder::WHOLE_FORWARD_SEGMENT,
+            Estimator::LongCylinder(_) => LongCylinder::WHOLE_FORWARD_SEGMENT,
+        }
+    }
+
+    /// Bounds of a volume (for building the gather structure).
+    pub fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
+        match self {
+            Estimator::Spheres(e) => e.bounds(seg, v, radius),
+            Estimator::Cylinder(e) => e.bounds(seg, v, radius),
+            Estimator::TruncatedCylinder(e) => e.bounds(seg, v, radius),
+            Estimator::LongCylinder(e) => e.bounds(seg, v, radius),
+        }
+    }
+}
+
+/// The box of the capsule around `[a, b]` (cylinders) or of the sphere at `b` (`a = b`).
+pub(crate) fn capsule_bounds(a: Vec3, b: Vec3, radius: f32) -> Aabb {
+    let r = glam::Vec3A::splat(radius);
+    let (a, b) = (glam::Vec3A::from(a), glam::Vec3A::from(b));
+    Aabb::new(a.min(b) - r, a.max(b) + r)
+}

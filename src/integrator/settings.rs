@@ -1,0 +1,162 @@
+//! The integrator's settings: the `[integrator]` table of a scene file, with every default, and
+//! their checks. The scene file format embeds this type; the runtime reads it through
+//! [`Integrator`](super::Integrator).
+
+use serde::{Deserialize, Serialize};
+
+use crate::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use crate::spectrum::Spectrum;
+
+/// The integration volume camera paths leave in media (`integrator.volume`); each is an
+/// [`Estimator`](super::Estimator) variant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VolumeKind {
+    /// Stochastic spheres along the camera segment; q = 1 is the single sphere at the extinction.
+    #[default]
+    Spheres,
+    /// Deterministic transmittance over the whole first medium segment (paper eq. 2).
+    Cylinder,
+    /// Cylinder ending at the sampled extinction (method note 5b).
+    CylinderTruncated,
+    /// Paper eq. 3: deterministic attenuation along forward segments too.
+    CylinderLong,
+}
+
+/// Which light the medium's integration volumes collect (`integrator.mode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GatherMode {
+    /// The camera path ends at its first medium extinction or diffuse surface.
+    #[default]
+    FirstExtinction,
+    /// Volumes on the first medium segment gather direct/caustic light only; the path goes on
+    /// through the medium to the diffuse surface behind, which gathers everything.
+    SeeThrough,
+}
+
+/// Gather memory per pass when `max_gather_bytes = 0`: a fixed figure, not a share of the
+/// machine's memory, so that the same scene tiles its passes the same way (and so renders the
+/// same bits) on every machine. 4 GiB holds ~100 million integration spheres.
+pub const DEFAULT_GATHER_BYTES: u64 = 4 << 30;
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IntegratorDesc {
+    /// Integration sphere / cylinder radius in metres.
+    pub radius: f32,
+    /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
+    /// after pass p. 1 keeps the radius fixed (the paper's setting).
+    pub alpha: f32,
+    /// Forward (light) rays traced per pass.
+    pub forward_rays: u64,
+    /// Camera samples per pixel per pass.
+    pub camera_samples: u32,
+    /// Longest camera or forward path in events.
+    pub max_depth: u32,
+    /// Multiple-spheres control parameter in (0, 1]; 1 = one sphere per camera segment.
+    pub q: f32,
+    pub volume: VolumeKind,
+    pub mode: GatherMode,
+    pub channel_pick: ChannelPick,
+    /// Uniform floor mixed into the channel probabilities so that none is zero.
+    pub channel_floor: f32,
+    /// Upper bound on gather-structure memory per pass in bytes; 0 = `DEFAULT_GATHER_BYTES`.
+    pub max_gather_bytes: u64,
+    /// Passes rendered when neither `--passes` nor `--time` is given.
+    pub passes: u32,
+    /// Base seed of all random streams.
+    pub seed: u64,
+}
+
+impl Default for IntegratorDesc {
+    fn default() -> Self {
+        Self {
+            radius: 0.01,
+            alpha: 1.0,
+            forward_rays: 200_000,
+            camera_samples: 1,
+            max_depth: 32,
+            q: 1.0,
+            volume: VolumeKind::Spheres,
+            mode: GatherMode::FirstExtinction,
+            channel_pick: ChannelPick::Throughput,
+            channel_floor: 0.1,
+            max_gather_bytes: 0,
+            passes: 16,
+            seed: 0,
+        }
+    }
+}
+
+impl IntegratorDesc {
+    /// Reports every out-of-range setting to `fail(key, message)`.
+    pub fn check(&self, mut fail: impl FnMut(&str, String)) {
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            fail(
+                "integrator.radius",
+                format!("must be a finite number > 0, got {}", self.radius),
+            );
+        }
+        if !(self.alpha > 0.0 && self.alpha <= 1.0) {
+            fail(
+                "integrator.alpha",
+                format!("must be in (0, 1], got {}", self.alpha),
+            );
+        }
+        if !(self.q > 0.0 && self.q <= 1.0) {
+            fail("integrator.q", format!("must be in (0, 1], got {}", self.q));
+        }
+        if !(1..=1_000_000_000_000).contains(&self.forward_rays) {
+            fail(
+                "integrator.forward_rays",
+                format!("must be in 1..=1e12, got {}", self.forward_rays),
+            );
+        }
+        if !(1..=4096).contains(&self.camera_samples) {
+            fail("integrator.camera_samples", "must be in 1..=4096".into());
+        }
+        if !(1..=4096).contains(&self.max_depth) {
+            fail("integrator.max_depth", "must be in 1..=4096".into());
+        }
+        if !(self.channel_floor > 0.0 && self.channel_floor <= 1.0) {
+            fail("integrator.channel_floor", "must be in (0, 1]".into());
+        }
+        if self.passes == 0 {
+            fail("integrator.passes", "must be at least 1".into());
+        }
+    }
+
+    /// The gather memory budget per pass in bytes.
+    pub fn gather_budget(&self) -> usize {
+        let b = if self.max_gather_bytes > 0 {
+            self.max_gather_bytes
+        } else {
+            DEFAULT_GATHER_BYTES
+        };
+        usize::try_from(b).unwrap_or(usize::MAX)
+    }
+
+    /// How camera segments pick their stepping bin (method note 3).
+    pub fn channels(&self) -> Channels {
+        Channels {
+            pick: self.channel_pick,
+            floor: self.channel_floor,
+        }
+    }
+}
+
+/// The camera side's channel-mixture rule (`channel_pick`, `channel_floor`): the camera pass
+/// and truncated cylinders build the same mixture from a throughput.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Channels {
+    pub pick: ChannelPick,
+    pub floor: f32,
+}
+
+impl Channels {
+    /// The mixture of a camera segment with throughput `w` in `medium`.
+    pub fn mixture(&self, w: &Spectrum, medium: &HomogeneousMedium) -> Mixture {
+        Mixture::new(self.pick, w, medium, self.floor)
+    }
+}

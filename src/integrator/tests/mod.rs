@@ -1,0 +1,3 @@
+//! Unit tests of the engine that need whole scenes.
+
+mod gather_bytes;
