@@ -1,6 +1,8 @@
 //! The surface engine against analytic radiance: integration spheres on diffuse surfaces
 //! gathering forward rays (paper sections 1-2; method note 1 on surfaces). Fixed seeds; each
-//! comparison is per spectral bin with a stated z-bound.
+//! comparison is per spectral bin with a stated z-bound. The scenes pin `direct = "photons"`
+//! (the paper's surface spheres); the last test checks next-event estimation on the same
+//! surfaces.
 
 mod common;
 
@@ -29,6 +31,7 @@ look_at = [0, 0, 0]
 view_width = 0.8
 view_height = 0.8
 [integrator]
+direct = "photons"
 radius = 0.02
 forward_rays = 100000
 [spectra.rho]
@@ -76,6 +79,7 @@ look_at = [0.45, 0, 0]
 view_width = 0.2
 view_height = 0.02
 [integrator]
+direct = "photons"
 forward_rays = 100000
 [materials.paper]
 type = "lambert"
@@ -144,6 +148,7 @@ up = [0, 0, -1]
 view_width = 0.2
 view_height = 0.2
 [integrator]
+direct = "photons"
 radius = {radius}
 alpha = {alpha}
 forward_rays = 100000
@@ -258,6 +263,7 @@ look_at = [0, 0, 0]
 view_width = 0.12
 view_height = 0.12
 [integrator]
+direct = "photons"
 radius = 0.01
 forward_rays = 200000
 [materials.floor]

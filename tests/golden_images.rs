@@ -38,7 +38,8 @@ const ESTIMATORS: [(&str, &[&str]); 5] = [
 const MODES: [&str; 2] = ["first-extinction", "see-through"];
 
 /// Settings that pin the paper's pure method and a tiny, fast render.
-const COMMON: [&str; 5] = [
+const COMMON: [&str; 6] = [
+    "integrator.direct=\"photons\"",
     "camera.width=16",
     "camera.height=12",
     "integrator.forward_rays=3000",

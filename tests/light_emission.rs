@@ -318,7 +318,7 @@ fn light_set_shares_rays_in_proportion_to_power() {
             rng.random(),
             rng.random(),
         ];
-        let s = set.sample(&geo, u).unwrap();
+        let (_, s) = set.sample(&geo, u).unwrap();
         let i = (s.ray.o.x.round() as usize) - 1;
         sums[i] += s.flux;
         counts[i] += 1;

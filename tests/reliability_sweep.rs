@@ -83,8 +83,14 @@ fn extreme_parameters_give_finite_images() {
                     } else {
                         q
                     };
-                    for radius in ["1e-6", "10"] {
+                    for (radius, direct) in [
+                        ("1e-6", "photons"),
+                        ("1e-6", "nee"),
+                        ("10", "photons"),
+                        ("10", "nee"),
+                    ] {
                         let sets = [
+                            format!("integrator.direct=\"{direct}\""),
                             format!("integrator.volume=\"{volume}\""),
                             format!("media.fog.g={g}"),
                             format!("media.fog.sigma_s={sigma}"),
@@ -124,6 +130,6 @@ fn extreme_parameters_give_finite_images() {
     for line in &report {
         eprintln!("{line}");
     }
-    assert_eq!(cases, 3 * 3 * 2 * 2 + 3 * 3 * 2 * 3);
+    assert_eq!(cases, 3 * 3 * 4 * 2 + 3 * 3 * 4 * 3);
     assert!(black.is_empty(), "black images: {black:#?}");
 }

@@ -9,6 +9,7 @@ use rand::Rng as _;
 use rayon::prelude::*;
 
 use super::Integrator;
+use super::direct::Segment;
 use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
 use super::gather;
 use super::oct::Oct;
@@ -40,10 +41,8 @@ pub fn camera_pass(
     budget_bytes: usize,
     stop: &AtomicBool,
 ) -> Option<(CameraOutput, u32)> {
-    let (w, h) = scene.camera.resolution();
-    let n = scene.grid.n;
-    let samples = integrator.settings.camera_samples;
-    let mut all = CameraOutput::new(n);
+    let h = scene.camera.resolution().1;
+    let mut all = CameraOutput::new(scene.grid.n);
     let mut row = first_row;
     while row < h {
         if stop.load(Ordering::Relaxed) {
@@ -52,30 +51,7 @@ pub fn camera_pass(
         let end = (row + ROW_BATCH).min(h);
         let rows: Vec<CameraOutput> = (row..end)
             .into_par_iter()
-            .map(|y| {
-                let mut out = CameraOutput::new(n);
-                let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
-                for x in 0..w {
-                    let pixel = y * w + x;
-                    for _ in 0..samples {
-                        let px = x as f32 + rng.random::<f32>();
-                        let py = y as f32 + rng.random::<f32>();
-                        let ray = scene.camera.generate_ray(px, py);
-                        let mut cam = CameraPath::new(scene, integrator, pixel, &mut out);
-                        let max_depth = integrator.settings.max_depth;
-                        path::trace(
-                            scene,
-                            max_depth,
-                            ray,
-                            scene.camera_medium,
-                            &mut cam,
-                            &mut rng,
-                        );
-                        out.paths += 1;
-                    }
-                }
-                out
-            })
+            .map(|y| trace_row(scene, integrator, seed, pass, y))
             .collect();
         for r in rows {
             all.append(r);
@@ -88,12 +64,70 @@ pub fn camera_pass(
     Some((all, row))
 }
 
-/// Adds the camera pass's directly seen radiance into the pass buffer.
+/// Traces the camera paths of row `y` of pass `pass`.
+fn trace_row(scene: &Scene, integrator: &Integrator, seed: u64, pass: u64, y: u32) -> CameraOutput {
+    let w = scene.camera.resolution().0;
+    let mut out = CameraOutput::new(scene.grid.n);
+    let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
+    let max_depth = integrator.settings.max_depth;
+    for x in 0..w {
+        let pixel = y * w + x;
+        let mut nee = NeeSums::default();
+        for _ in 0..integrator.settings.camera_samples {
+            let px = x as f32 + rng.random::<f32>();
+            let py = y as f32 + rng.random::<f32>();
+            let ray = scene.camera.generate_ray(px, py);
+            let mut cam = CameraPath::new(scene, integrator, pixel, &mut out, &mut nee);
+            path::trace(
+                scene,
+                max_depth,
+                ray,
+                scene.camera_medium,
+                &mut cam,
+                &mut rng,
+            );
+            out.paths += 1;
+        }
+        nee.push_into(&mut out, pixel);
+    }
+    out
+}
+
+/// Adds the camera pass's directly seen radiance and next-event estimates into the pass buffer.
 pub fn splat_direct(out: &CameraOutput, buf: &mut PassBuffer, scale: f32) {
+    let n = buf.n;
     for (pixel, v) in &out.direct {
-        let n = buf.n;
         buf.splat_scaled(Layer::Surface, *pixel as usize, v.as_slice(n), scale);
     }
+    for (pixel, v) in &out.nee_medium {
+        buf.splat_scaled(Layer::Medium, *pixel as usize, v.as_slice(n), scale);
+    }
+    for (pixel, v) in &out.nee_surface {
+        buf.splat_scaled(Layer::Surface, *pixel as usize, v.as_slice(n), scale);
+    }
+}
+
+/// A pixel's next-event estimates, summed over its camera paths (one record per pixel, not
+/// per path).
+#[derive(Default)]
+struct NeeSums {
+    medium: Option<Spectrum>,
+    surface: Option<Spectrum>,
+}
+
+impl NeeSums {
+    fn push_into(self, out: &mut CameraOutput, pixel: u32) {
+        if let Some(v) = self.medium {
+            out.nee_medium.push((pixel, v));
+        }
+        if let Some(v) = self.surface {
+            out.nee_surface.push((pixel, v));
+        }
+    }
+}
+
+fn add(sum: &mut Option<Spectrum>, v: Spectrum) {
+    *sum.get_or_insert(Spectrum::ZERO) += v;
 }
 
 /// One camera path: its state, and what it records into the pass's output.
@@ -101,6 +135,7 @@ struct CameraPath<'a> {
     scene: &'a Scene,
     integrator: &'a Integrator,
     out: &'a mut CameraOutput,
+    nee: &'a mut NeeSums,
     pixel: u32,
     n: usize,
     /// Spectral throughput from the camera.
@@ -117,12 +152,14 @@ impl<'a> CameraPath<'a> {
         integrator: &'a Integrator,
         pixel: u32,
         out: &'a mut CameraOutput,
+        nee: &'a mut NeeSums,
     ) -> Self {
         let n = scene.grid.n;
         Self {
             scene,
             integrator,
             out,
+            nee,
             pixel,
             n,
             w: Spectrum::splat(1.0, n),
@@ -217,6 +254,18 @@ impl PathStep for CameraPath<'_> {
             self.gathering = false;
         }
         let integrator = self.integrator;
+        if let Some(direct) = &integrator.direct {
+            // Direct light over the whole segment, whatever the walk does on it (note 9).
+            let seg = Segment {
+                medium: m,
+                ray,
+                len,
+                mix: &mix,
+            };
+            let mut acc = Spectrum::ZERO;
+            direct.medium_segment(self.scene, &seg, rng, &mut acc);
+            add(&mut self.nee.medium, acc * self.w);
+        }
         let end = match &integrator.estimator {
             Estimator::Spheres(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
             Estimator::Cylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
@@ -258,6 +307,10 @@ impl PathStep for CameraPath<'_> {
         let pd = material.diffuse_probability(wo, hit);
         if pd > 0.0 && rng.random::<f32>() < pd {
             self.gather_here(hit, wo, pd);
+            if let Some(direct) = &self.integrator.direct {
+                let v = direct.diffuse(scene, hit, wo, material, rng);
+                add(&mut self.nee.surface, v * self.w * (1.0 / pd));
+            }
             return SurfaceStep::Stop;
         }
         let u = Vec3::new(rng.random(), rng.random(), rng.random());

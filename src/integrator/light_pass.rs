@@ -95,6 +95,7 @@ pub fn light_pass(
                         flux: Spectrum::ZERO,
                         flux0: 0.0,
                         class: CLASS_C,
+                        deposits: true,
                     };
                     for _ in 0..chunk.min(total - c * chunk) {
                         tracer.trace(&mut rng);
@@ -207,6 +208,10 @@ struct ForwardTracer<'a> {
     flux: Spectrum,
     flux0: f32,
     class: u8,
+    /// Whether the ray deposits in volumes and surface spheres: false on the first flight of a
+    /// light whose direct light next-event estimation handles, until its first scattering or
+    /// surface event (method note 9).
+    deposits: bool,
 }
 
 impl ForwardTracer<'_> {
@@ -219,7 +224,7 @@ impl ForwardTracer<'_> {
             rng.random(),
             rng.random(),
         ];
-        let Some(es) = scene.lights.sample(&scene.geometry, u) else {
+        let Some((light, es)) = scene.lights.sample(&scene.geometry, u) else {
             return;
         };
         self.flux = es.flux;
@@ -228,6 +233,11 @@ impl ForwardTracer<'_> {
             return;
         }
         self.class = CLASS_C;
+        self.deposits = !self
+            .integrator
+            .direct
+            .as_ref()
+            .is_some_and(|d| d.handles(light));
         let medium = self.medium_at(es.ray.o);
         let max_depth = self.integrator.settings.max_depth;
         path::trace(scene, max_depth, es.ray, medium, self, rng);
@@ -358,7 +368,9 @@ impl PathStep for ForwardTracer<'_> {
         } else {
             flight.end()
         };
-        self.gather_volumes(Some(m), ray, reach, Some(&flight));
+        if self.deposits {
+            self.gather_volumes(Some(m), ray, reach, Some(&flight));
+        }
         match flight.finish(med, &mut self.flux) {
             FlightEnd::Escaped => MediumStep::Reached,
             FlightEnd::Killed { .. } => MediumStep::Ended,
@@ -367,6 +379,7 @@ impl PathStep for ForwardTracer<'_> {
     }
 
     fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
+        self.deposits = true;
         if !self.roulette(depth, rng) {
             return None;
         }
@@ -378,7 +391,7 @@ impl PathStep for ForwardTracer<'_> {
     }
 
     fn vacuum(&mut self, ray: &Ray, hit: Option<&Hit>) {
-        if self.scene.open_media {
+        if self.scene.open_media && self.deposits {
             // Integration volumes poking out of index-matched boundaries still see the forward
             // rays that pass their outside part (method note 8).
             let len = hit.map_or_else(|| self.scene.world_exit(ray), |h| h.t);
@@ -393,9 +406,10 @@ impl PathStep for ForwardTracer<'_> {
         };
         let material = &scene.materials[mat_id as usize];
         let wo = -ray.d;
-        if material.diffuse_probability(wo, hit) > 0.0 {
+        if self.deposits && material.diffuse_probability(wo, hit) > 0.0 {
             self.gather_surfaces(hit, ray.d);
         }
+        self.deposits = true;
         let u = Vec3::new(rng.random(), rng.random(), rng.random());
         let Some(s) = material.sample(wo, hit, u) else {
             return SurfaceStep::Stop;

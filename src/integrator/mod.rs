@@ -1,10 +1,12 @@
 //! The bidirectional engine: camera pass -> gather structure -> light pass -> film.
 //!
 //! An [`Integrator`] is built once from the `[integrator]` settings and owned by the
-//! [`Renderer`]: the settings, the integration-volume [`Estimator`] and the radius schedule.
+//! [`Renderer`]: the settings, the integration-volume [`Estimator`], next-event estimation of
+//! direct light ([`Direct`]) and the radius schedule.
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
 mod camera_pass;
+pub mod direct;
 pub mod estimator;
 mod exp;
 pub mod gather;
@@ -19,11 +21,12 @@ mod rng;
 pub mod settings;
 mod throughput;
 
+pub use direct::Direct;
 pub use estimator::Estimator;
 pub use memory::MemoryEstimate;
 pub use pass::{Budget, Renderer, Stats};
 pub use radius::{RadiusSchedule, radius_for_pass};
-pub use settings::{DEFAULT_GATHER_BYTES, GatherMode, IntegratorDesc, VolumeKind};
+pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
 
 use crate::medium::MediumError;
 use crate::world::Scene;
@@ -33,6 +36,8 @@ use crate::world::Scene;
 pub struct Integrator {
     pub settings: IntegratorDesc,
     pub estimator: Estimator,
+    /// Next-event estimation of direct light, when any light is handled by it.
+    pub direct: Option<Direct>,
     pub radius: RadiusSchedule,
 }
 
@@ -42,6 +47,7 @@ impl Integrator {
         Ok(Self {
             settings: desc.clone(),
             estimator: Estimator::from_desc(desc, &scene.media)?,
+            direct: Direct::from_desc(desc, scene),
             radius: RadiusSchedule {
                 r0: desc.radius,
                 alpha: desc.alpha,

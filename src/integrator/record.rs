@@ -70,6 +70,10 @@ pub struct CameraOutput {
     pub throughputs: ThroughputTable,
     /// Radiance seen directly (emitters), per pixel of the batch: (pixel, value).
     pub direct: Vec<(u32, Spectrum)>,
+    /// Next-event estimates of direct light summed over a pixel's camera paths, per pixel:
+    /// scattered by media (the `medium` layer) and reflected by surfaces (`surface`).
+    pub nee_medium: Vec<(u32, Spectrum)>,
+    pub nee_surface: Vec<(u32, Spectrum)>,
     /// Camera paths started.
     pub paths: u64,
 }
@@ -100,6 +104,8 @@ impl CameraOutput {
         self.segments.append(&mut other.segments);
         self.volumes.append(&mut other.volumes);
         self.direct.append(&mut other.direct);
+        self.nee_medium.append(&mut other.nee_medium);
+        self.nee_surface.append(&mut other.nee_surface);
         self.paths += other.paths;
     }
 }

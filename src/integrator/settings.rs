@@ -35,6 +35,20 @@ pub enum GatherMode {
     SeeThrough,
 }
 
+/// How direct light (emitted, arriving through index-matched boundaries only) reaches the
+/// image (`integrator.direct`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DirectMode {
+    /// Next-event estimation from camera paths for the lights that allow it (each light's
+    /// `direct`, `auto` by default); forward rays of those lights gather only after their first
+    /// scattering or surface event (method note 9).
+    #[default]
+    Nee,
+    /// The paper's pure method: every light's forward rays gather from their emission on.
+    Photons,
+}
+
 /// Gather memory per pass when `max_gather_bytes = 0`: a fixed figure, not a share of the
 /// machine's memory, so that the same scene tiles its passes the same way (and so renders the
 /// same bits) on every machine. 4 GiB holds ~100 million integration spheres.
@@ -58,6 +72,10 @@ pub struct IntegratorDesc {
     pub q: f32,
     pub volume: VolumeKind,
     pub mode: GatherMode,
+    pub direct: DirectMode,
+    /// Distance samples of next-event estimation per camera medium segment (and light samples
+    /// per diffuse surface hit).
+    pub nee_samples: u32,
     pub channel_pick: ChannelPick,
     /// Uniform floor mixed into the channel probabilities so that none is zero.
     pub channel_floor: f32,
@@ -80,6 +98,8 @@ impl Default for IntegratorDesc {
             q: 1.0,
             volume: VolumeKind::Spheres,
             mode: GatherMode::FirstExtinction,
+            direct: DirectMode::Nee,
+            nee_samples: 1,
             channel_pick: ChannelPick::Throughput,
             channel_floor: 0.1,
             max_gather_bytes: 0,
@@ -118,6 +138,9 @@ impl IntegratorDesc {
         }
         if !(1..=4096).contains(&self.max_depth) {
             fail("integrator.max_depth", "must be in 1..=4096".into());
+        }
+        if !(1..=1024).contains(&self.nee_samples) {
+            fail("integrator.nee_samples", "must be in 1..=1024".into());
         }
         if !(self.channel_floor > 0.0 && self.channel_floor <= 1.0) {
             fail("integrator.channel_floor", "must be in (0, 1]".into());

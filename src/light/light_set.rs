@@ -49,8 +49,8 @@ impl LightSet {
     }
 
     /// Picks a light with `u[0]` and samples a forward ray from it with `u[1..5]`; the flux is
-    /// divided by the pick probability. None when no light emits.
-    pub fn sample(&self, geometry: &Geometry, u: [f32; 5]) -> Option<EmissionSample> {
+    /// divided by the pick probability. Returns the light's index too. None when no light emits.
+    pub fn sample(&self, geometry: &Geometry, u: [f32; 5]) -> Option<(u32, EmissionSample)> {
         let i = self.cdf.partition_point(|&c| c <= u[0]);
         // Past the end only through rounding of the last cdf entry: take the last emitting light.
         let i = if i < self.lights.len() {
@@ -64,6 +64,6 @@ impl LightSet {
         }
         let mut s = self.lights[i].sample_emission(geometry, [u[1], u[2], u[3], u[4]]);
         s.flux /= p;
-        Some(s)
+        Some((i as u32, s))
     }
 }

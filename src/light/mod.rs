@@ -1,6 +1,7 @@
 //! Light sources: total power, forward-ray sampling and (for area lights) emitted radiance.
 
 mod beam;
+mod direct;
 mod light_set;
 mod spot;
 
@@ -13,6 +14,7 @@ use crate::geometry::{Geometry, Hit, Ray};
 use crate::spectrum::Spectrum;
 use beam::Beam;
 
+pub use direct::{Anchor, Arrival};
 pub use light_set::LightSet;
 pub use spot::SpotProfile;
 

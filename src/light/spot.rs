@@ -27,6 +27,11 @@ impl SpotProfile {
         }
     }
 
+    /// Cosine of the outer half-angle: no light leaves at larger angles from the axis.
+    pub fn cos_edge(&self) -> f32 {
+        self.c_edge
+    }
+
     /// Fraction of the power per steradian towards a direction with axis cosine `c`.
     pub fn intensity_fraction(&self, c: f32) -> f32 {
         let p = if c >= self.c_full {

@@ -1,0 +1,135 @@
+//! Single scattering of direct light along one camera segment `[0, len]` in a homogeneous
+//! medium (method note 9):
+//!
+//! `I_l = ∫_0^len e^{-st_l t} ss_l p(u, v) T_l(x(t) -> light) Li_l(x(t)) dt`,
+//!
+//! estimated with `nee_samples` stratified distances from one density `p(t)` shared by all bins,
+//! so that `f_l(t) / p(t)` is unbiased in every bin without mixture weights. The density follows
+//! the light: a truncated exponential whose rate is the camera's extinction plus the growth of
+//! the light's optical depth along the segment (exact for a parallel light in a convex
+//! homogeneous medium, where that depth is linear in t), or equiangular about a point light or a
+//! point sampled on an area light, clipped to a spot's cone.
+
+use glam::{Vec2, Vec3};
+use rand::Rng as _;
+
+use super::Direct;
+use super::sampling::{Equiangular, ExpMixture, cone_interval};
+use super::shadow::{optical_depth, visible};
+use crate::geometry::Ray;
+use crate::integrator::rng::Rng;
+use crate::light::Anchor;
+use crate::medium::Mixture;
+use crate::spectrum::Spectrum;
+use crate::world::Scene;
+
+/// One camera segment, as next-event estimation sees it.
+pub struct Segment<'a> {
+    pub medium: u32,
+    pub ray: &'a Ray,
+    pub len: f32,
+    /// The segment's channel mixture: its probabilities average the extinction the densities
+    /// are built from.
+    pub mix: &'a Mixture,
+}
+
+impl Direct {
+    /// Adds the single-scattering estimate of `seg` (per bin, without the camera throughput)
+    /// to `acc`.
+    pub fn medium_segment(&self, scene: &Scene, seg: &Segment, rng: &mut Rng, acc: &mut Spectrum) {
+        if !(seg.len > 0.0 && seg.len.is_finite()) {
+            return;
+        }
+        let med = &scene.media[seg.medium as usize];
+        let n = scene.grid.n;
+        let inv_samples = 1.0 / self.samples as f32;
+        // The parallel light's density is probed once per segment.
+        let mut parallel: Option<(u32, ExpMixture)> = None;
+        // Distances are stratified, and so are the bins a mixture picks; pairing stratum i with
+        // bin stratum (i + shift) mod n for a random shift keeps each pair uniform on the
+        // unit square (a Latin hypercube), so every sample stays unbiased.
+        let shift = rng.random_range(0..self.samples);
+        for i in 0..self.samples {
+            let (j, prob) = self.pick(rng.random());
+            let light = &scene.lights.lights()[j as usize];
+            let uv = Vec2::new(rng.random(), rng.random());
+            let u = (i as f32 + rng.random::<f32>()) * inv_samples;
+            let Some(anchor) = light.nee_anchor(&scene.geometry, uv) else {
+                continue;
+            };
+            let (o, d) = (seg.ray.o, seg.ray.d);
+            let (t, pdf) = match anchor {
+                Anchor::Direction { direction, .. } => {
+                    if parallel.as_ref().is_none_or(|(l, _)| *l != j) {
+                        parallel = Some((j, parallel_density(scene, seg, direction)));
+                    }
+                    let e = &parallel.as_ref().expect("just set").1;
+                    let stratum = (i + shift) % self.samples;
+                    let u_bin = (stratum as f32 + rng.random::<f32>()) * inv_samples;
+                    let t = e.sample(u_bin, u);
+                    (t, e.pdf(t))
+                }
+                Anchor::Point { position, cone } => {
+                    let (a, b) = match cone {
+                        Some((axis, cos_edge)) => {
+                            match cone_interval(o, d, 0.0, seg.len, position, axis, cos_edge) {
+                                Some(ab) => ab,
+                                None => continue,
+                            }
+                        }
+                        None => (0.0, seg.len),
+                    };
+                    equiangular(o, d, position, a, b, u)
+                }
+                Anchor::Surface { position, .. } => equiangular(o, d, position, 0.0, seg.len, u),
+            };
+            if !(pdf > 0.0 && pdf.is_finite()) {
+                continue;
+            }
+            let x = o + d * t;
+            let Some(arrival) = anchor.arrival(light, x) else {
+                continue;
+            };
+            let Some(tr) = visible(scene, Some(seg.medium), x, arrival.wi, arrival.dist) else {
+                continue;
+            };
+            // Light travelling along -wi turns towards the camera (-d): cos = wi . d.
+            let phase = med.phase.eval(arrival.wi.dot(d));
+            let scale = phase / (pdf * prob) * inv_samples;
+            let camera = med.sigma_t.transmittance(t, n);
+            *acc += camera * med.sigma_s * arrival.li * tr * scale;
+        }
+    }
+}
+
+fn equiangular(o: Vec3, d: Vec3, c: Vec3, a: f32, b: f32, u: f32) -> (f32, f32) {
+    let e = Equiangular::new(o, d, c, a, b);
+    if e.is_empty() {
+        return (0.0, 0.0);
+    }
+    let t = e.sample(u).clamp(a, b);
+    (t, e.pdf(t))
+}
+
+/// The density that follows `e^{-st_l t} e^{-tau_l(t)}` for a parallel light along
+/// `direction`, per bin mixed by the segment's channel probabilities: rate `st_l` plus the slope
+/// of the light's optical depth `tau_l` between two probes near the segment's ends. Falls back
+/// to the camera's rates alone where a probe is blocked (the segment is then partly shadowed;
+/// any density stays unbiased).
+fn parallel_density(scene: &Scene, seg: &Segment, direction: Vec3) -> ExpMixture {
+    let med = &scene.media[seg.medium as usize];
+    let n = scene.grid.n;
+    let (t0, t1) = (0.001 * seg.len, 0.999 * seg.len);
+    let depth = |t: f32| {
+        let ray = Ray {
+            o: seg.ray.o + seg.ray.d * t,
+            d: -direction,
+        };
+        optical_depth(scene, Some(seg.medium), ray, f32::INFINITY)
+    };
+    let mut rates = med.sigma_t;
+    if let (Some(a), Some(b)) = (depth(t0), depth(t1)) {
+        rates += (b - a) * (1.0 / (t1 - t0));
+    }
+    ExpMixture::new(&rates, seg.mix.probabilities(), n, seg.len)
+}

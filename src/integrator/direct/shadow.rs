@@ -1,0 +1,70 @@
+//! Shadow rays of next-event estimation: the per-bin transmittance between a point and a light
+//! through index-matched (null) boundaries and the homogeneous media between them. Any surface
+//! with a material blocks: light that arrives through a reflection or refraction is not direct
+//! (method note 9) and stays with the forward rays.
+
+use glam::Vec3;
+
+use super::super::path::MAX_CROSSINGS;
+use crate::geometry::{Ray, spawn};
+use crate::spectrum::Spectrum;
+use crate::world::Scene;
+
+/// A shadow ray stops this far (relative, at least 1e-4 m) before a light at a finite distance,
+/// so that the light's own surface does not block it.
+const END_GAP: f32 = 1e-4;
+
+/// Optical depth per bin from `ray.o` (in `medium`) along `ray.d` over `dist` (`+inf`: to the
+/// world's edge), or None when a surface with a material is in the way.
+pub fn optical_depth(
+    scene: &Scene,
+    mut medium: Option<u32>,
+    mut ray: Ray,
+    dist: f32,
+) -> Option<Spectrum> {
+    let mut tau = Spectrum::ZERO;
+    let mut left = if dist.is_finite() {
+        dist - END_GAP.max(dist * END_GAP)
+    } else {
+        f32::INFINITY
+    };
+    for _ in 0..MAX_CROSSINGS {
+        if left <= 0.0 {
+            return Some(tau);
+        }
+        let hit = scene.geometry.intersect(&ray, left);
+        let len = match &hit {
+            Some(h) => h.t,
+            None if left.is_finite() => left,
+            None => scene.world_exit(&ray),
+        };
+        if let Some(m) = medium {
+            tau += scene.media[m as usize].sigma_t * len;
+        }
+        let Some(h) = hit else { return Some(tau) };
+        if scene.geometry.shape(h.shape).material.is_some() {
+            return None;
+        }
+        medium = scene.geometry.medium_after(&h, ray.d);
+        ray = spawn(h.p, h.ng, ray.d);
+        left -= h.t;
+    }
+    None
+}
+
+/// `e^{-tau_l}` per bin over the scene's bins.
+pub fn transmittance(tau: &Spectrum, n: usize) -> Spectrum {
+    tau.transmittance(1.0, n)
+}
+
+/// Transmittance from `x` in `medium` towards `wi` over `dist`, or None when blocked.
+pub fn visible(
+    scene: &Scene,
+    medium: Option<u32>,
+    x: Vec3,
+    wi: Vec3,
+    dist: f32,
+) -> Option<Spectrum> {
+    let tau = optical_depth(scene, medium, Ray { o: x, d: wi }, dist)?;
+    Some(transmittance(&tau, scene.grid.n))
+}
