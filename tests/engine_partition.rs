@@ -1,0 +1,124 @@
+//! The hybrid transport's partition (method note 9, issue 15): with `direct = "nee"` camera
+//! paths estimate direct light and forward rays of those lights deposit only after their first
+//! event; with `direct = "photons"` forward rays carry everything. Both count every light path
+//! once, so on the shipped scenes they agree per layer and per bin, at q = 1 and q = 0.3 and for
+//! both channel picks: |z| <= 4, z from independent renders of each mode (tiny images, the
+//! layers' image means).
+
+mod common;
+
+use std::path::Path;
+
+use brume::film::SpectralImage;
+use common::*;
+
+const Z: f64 = 4.0;
+const RUNS: u64 = 10;
+
+/// Per layer ("medium", "surface"), per bin: the image mean over `RUNS` one-pass renders and
+/// its standard error.
+fn layer_means(s: &Setup) -> Vec<(String, Vec<f64>, Vec<f64>)> {
+    let n = s.grid.n;
+    let imgs: Vec<SpectralImage> = (0..RUNS).map(|r| render(s, 900 + r, 1)).collect();
+    let names: Vec<String> = imgs[0].layers.iter().map(|(k, _)| k.clone()).collect();
+    names
+        .iter()
+        .enumerate()
+        .map(|(li, name)| {
+            let samples: Vec<Vec<f64>> = imgs
+                .iter()
+                .map(|img| {
+                    let data = &img.layers[li].1;
+                    let pixels = data.len() / n;
+                    (0..n)
+                        .map(|b| {
+                            (0..pixels).map(|p| data[p * n + b] as f64).sum::<f64>() / pixels as f64
+                        })
+                        .collect()
+                })
+                .collect();
+            let (mean, se) = mean_and_se(&samples, n);
+            (name.clone(), mean, se)
+        })
+        .collect()
+}
+
+fn check(name: &str, file: &str, extra: &[&str]) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(file);
+    let mut worst = 0.0f64;
+    for q in ["1", "0.3"] {
+        for pick in ["throughput", "uniform"] {
+            let mut sets: Vec<String> = [
+                "camera.width=16",
+                "camera.height=12",
+                "film.bins=8",
+                "integrator.camera_samples=2",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+            sets.push(format!("integrator.q={q}"));
+            sets.push(format!("integrator.channel_pick=\"{pick}\""));
+            sets.extend(extra.iter().map(|s| s.to_string()));
+            let mut by_mode = Vec::new();
+            for mode in ["nee", "photons"] {
+                let mut s = sets.clone();
+                s.push(format!("integrator.direct=\"{mode}\""));
+                by_mode.push(layer_means(&scene_file(&path, &s)));
+            }
+            for ((layer, a, sa), (_, b, sb)) in by_mode[0].iter().zip(&by_mode[1]) {
+                for bin in 0..a.len() {
+                    let se = (sa[bin].powi(2) + sb[bin].powi(2)).sqrt();
+                    let z = if se > 0.0 {
+                        (a[bin] - b[bin]) / se
+                    } else {
+                        0.0
+                    };
+                    worst = worst.max(z.abs());
+                    assert!(
+                        z.abs() <= Z,
+                        "{name} q={q} {pick} {layer} bin {bin}: nee {:.4e} photons {:.4e} (z {z:.2})",
+                        a[bin],
+                        b[bin]
+                    );
+                }
+            }
+        }
+    }
+    eprintln!("{name}: largest |z| {worst:.2}");
+}
+
+#[test]
+fn fog_cube_partition() {
+    check("fog-cube", "fog-cube.toml", &[]);
+}
+
+#[test]
+fn chromatic_fog_partition() {
+    check(
+        "chromatic-fog",
+        "chromatic-fog.toml",
+        &[
+            "integrator.forward_rays=100000",
+            "integrator.camera_samples=8",
+        ],
+    );
+}
+
+#[test]
+fn glass_sphere_fog_partition() {
+    check(
+        "glass-sphere-fog",
+        "glass-sphere-fog.toml",
+        &["integrator.forward_rays=40000"],
+    );
+}
+
+#[test]
+fn fog_room_partition_with_and_without_laser() {
+    check("fog-room-laser", "fog-room-laser.toml", &[]);
+    // Without its laser (its power made negligible, so that it draws no forward rays).
+    check("fog-room", "fog-room-laser.toml", &["lights.3.power=1e-12"]);
+}
