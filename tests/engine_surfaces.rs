@@ -63,21 +63,22 @@ spectrum = 1.0
     assert_bins("lambert", &mean, &se, &expected, Z, 0.0);
 }
 
-/// Near the quad's edge a sphere loses the part of its disc beyond the edge: the estimate is
-/// darker there, and the dark band narrows with R.
+/// Near the quad's edge a sphere would lose the part of its disc beyond the edge (the band
+/// within R of the edge darker by the mean lost fraction, `analytic` below); divided by the
+/// part of its disc on the quad (issue 19), the band is as bright as the interior.
 #[test]
-fn edge_bias_shrinks_with_radius() {
+fn edge_band_is_not_darkened() {
     let text = r#"
 [film]
 bins = 4
 [camera]
 type = "orthographic"
 width = 40
-height = 4
+height = 16
 position = [0.45, 0, 2]
 look_at = [0.45, 0, 0]
 view_width = 0.2
-view_height = 0.02
+view_height = 0.08
 [integrator]
 direct = "photons"
 forward_rays = 100000
@@ -101,7 +102,7 @@ spectrum = 1.0
         let m = 2000;
         (0..m)
             .map(|i| {
-                let d = 0.05 * (i as f64 + 0.5) / m as f64;
+                let d = r * (i as f64 + 0.5) / m as f64;
                 if d >= r {
                     0.0
                 } else {
@@ -120,17 +121,21 @@ spectrum = 1.0
             ],
         );
         let img = render(&s, 7, 16);
-        let inner = region_mean(&img, &img.data, 0, 10, 0, 4)[0];
-        let edge = region_mean(&img, &img.data, 20, 30, 0, 4)[0];
+        let inner = region_mean(&img, &img.data, 0, 10, 0, 16)[0];
+        // The band within R of the edge (R / 0.005 pixels).
+        let band = (r / 0.005).round() as usize;
+        let edge = region_mean(&img, &img.data, 30 - band, 30, 0, 16)[0];
         1.0 - edge / inner
     };
-    for r in [0.05, 0.01] {
-        let (got, want) = (deficit(r), analytic(r));
-        eprintln!("edge band deficit R={r}: measured {got:.4}, analytic {want:.4}");
-        // About 0.65% noise on the deficit at these settings: 0.025 is nearly 4 sigma.
-        assert!((got - want).abs() < 0.025, "R={r}: {got} vs {want}");
+    // Bounds of 4 standard deviations of the deficit at these settings (measured over seeds
+    // 7 to 11: 0.0065 over the 10-pixel band of R = 0.05, 0.015 over the 2-pixel band of
+    // R = 0.01); the uncorrected deficit of both bands is 0.21, far beyond either.
+    for (r, bound) in [(0.05, 0.03), (0.01, 0.06)] {
+        let (got, uncorrected) = (deficit(r), analytic(r));
+        eprintln!("edge band deficit R={r}: measured {got:.4}, uncorrected {uncorrected:.4}");
+        assert!(got.abs() < bound, "R={r}: the edge band is {got} darker");
+        assert!(uncorrected > 3.0 * bound, "{uncorrected}");
     }
-    assert!(analytic(0.01) < analytic(0.05) / 4.0);
 }
 
 fn point_light_scene(radius: f64, alpha: f64) -> String {

@@ -2,6 +2,7 @@
 
 mod analytic;
 mod bvh;
+mod edge;
 mod error;
 mod media;
 mod obj;

@@ -27,23 +27,32 @@ use crate::world::Scene;
 /// split into tiles never depends on the thread count.
 pub const ROW_BATCH: u32 = 8;
 
-/// Runs the camera pass of pass `pass` from row `first_row` on, until building the gather
-/// structure would need more than `budget_bytes` at its peak (at least one batch of rows). Rows
-/// are independent work items merged in row order (so are their throughput tables: indices do
-/// not depend on the thread count). Returns the output and the first row not traced, or None
+/// Which camera paths a camera pass traces.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraJob {
+    pub seed: u64,
+    pub pass: u64,
+    /// The pass's gather radius (surface spheres near an edge are renormalised with it).
+    pub radius: f32,
+    pub first_row: u32,
+    /// Peak gather memory after which the pass is split into a tile.
+    pub budget_bytes: usize,
+}
+
+/// Runs the camera pass of `job.pass` from row `job.first_row` on, until building the gather
+/// structure would need more than `job.budget_bytes` at its peak (at least one batch of rows).
+/// Rows are independent work items merged in row order (so are their throughput tables: indices
+/// do not depend on the thread count). Returns the output and the first row not traced, or None
 /// when `stop` was set (checked before every batch of rows).
 pub fn camera_pass(
     scene: &Scene,
     integrator: &Integrator,
-    seed: u64,
-    pass: u64,
-    first_row: u32,
-    budget_bytes: usize,
+    job: &CameraJob,
     stop: &AtomicBool,
 ) -> Option<(CameraOutput, u32)> {
     let h = scene.camera.resolution().1;
     let mut all = CameraOutput::new(scene.grid.n);
-    let mut row = first_row;
+    let mut row = job.first_row;
     while row < h {
         if stop.load(Ordering::Relaxed) {
             return None;
@@ -51,13 +60,13 @@ pub fn camera_pass(
         let end = (row + ROW_BATCH).min(h);
         let rows: Vec<CameraOutput> = (row..end)
             .into_par_iter()
-            .map(|y| trace_row(scene, integrator, seed, pass, y))
+            .map(|y| trace_row(scene, integrator, job, y))
             .collect();
         for r in rows {
             all.append(r);
         }
         row = end;
-        if gather::peak_bytes_for(&all) > budget_bytes {
+        if gather::peak_bytes_for(&all) > job.budget_bytes {
             break;
         }
     }
@@ -65,10 +74,10 @@ pub fn camera_pass(
 }
 
 /// Traces the camera paths of row `y` of pass `pass`.
-fn trace_row(scene: &Scene, integrator: &Integrator, seed: u64, pass: u64, y: u32) -> CameraOutput {
+fn trace_row(scene: &Scene, integrator: &Integrator, job: &CameraJob, y: u32) -> CameraOutput {
     let w = scene.camera.resolution().0;
     let mut out = CameraOutput::new(scene.grid.n);
-    let mut rng = rng::stream(seed, pass, Domain::Camera, y as u64);
+    let mut rng = rng::stream(job.seed, job.pass, Domain::Camera, y as u64);
     let max_depth = integrator.settings.max_depth;
     for x in 0..w {
         let pixel = y * w + x;
@@ -78,6 +87,7 @@ fn trace_row(scene: &Scene, integrator: &Integrator, seed: u64, pass: u64, y: u3
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);
             let mut cam = CameraPath::new(scene, integrator, pixel, &mut out, &mut nee);
+            cam.radius = job.radius;
             path::trace(
                 scene,
                 max_depth,
@@ -144,6 +154,8 @@ struct CameraPath<'a> {
     gathering: bool,
     /// Whether the path still sees emitters directly (false once they are gathered by volumes).
     sees_emitters: bool,
+    /// The pass's gather radius.
+    radius: f32,
 }
 
 impl<'a> CameraPath<'a> {
@@ -165,6 +177,7 @@ impl<'a> CameraPath<'a> {
             w: Spectrum::splat(1.0, n),
             gathering: true,
             sees_emitters: true,
+            radius: 0.0,
         }
     }
 
@@ -341,7 +354,9 @@ impl PathStep for CameraPath<'_> {
 }
 
 impl CameraPath<'_> {
-    /// Leaves a surface sphere on the diffuse part chosen with probability `pd`.
+    /// Leaves a surface sphere on the diffuse part chosen with probability `pd`. Near an edge
+    /// of its surface the sphere's weight is divided by the fraction of its disc on the surface
+    /// (`Geometry::disc_fraction`), so that it estimates the mean over the part that can be hit.
     fn gather_here(&mut self, hit: &Hit, wo: Vec3, pd: f32) {
         let n = if hit.ns.dot(wo) >= 0.0 {
             hit.ns
@@ -357,7 +372,12 @@ impl CameraPath<'_> {
             shape: hit.shape,
             uv: hit.uv,
             throughput,
-            scale: 1.0 / pd,
+            scale: 1.0
+                / (pd
+                    * self
+                        .scene
+                        .geometry
+                        .disc_fraction(hit.shape, hit.p, self.radius)),
         });
     }
 }

@@ -270,8 +270,9 @@ impl ForwardTracer<'_> {
         let inv_area = 1.0 / (PI * gather.radius * gather.radius);
         gather.surfaces_at(hit.p, |rec| {
             let rn = rec.n.decode();
-            // Same side of the same surface as the camera path's hit.
-            if rn.dot(wi) <= 0.0 || rn.dot(ng) < 0.5 {
+            // Same side of the same surface as the camera path's hit (its own shape: the disc
+            // fraction that renormalises the record counts only that shape).
+            if rec.shape != hit.shape || rn.dot(wi) <= 0.0 || rn.dot(ng) < 0.5 {
                 return;
             }
             let Some(mat) = scene.geometry.shape(rec.shape).material else {

@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use super::Integrator;
-use super::camera_pass::{camera_pass, splat_direct};
+use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
 use crate::film::{Film, PassBuffer, SpectralImage};
@@ -134,9 +134,14 @@ impl<'a> Renderer<'a> {
         let mut tile = 0u64;
         while row < h {
             let t0 = Instant::now();
-            let Some((mut out, next)) =
-                camera_pass(scene, integrator, self.seed, pass, row, budget, stop)
-            else {
+            let job = CameraJob {
+                seed: self.seed,
+                pass,
+                radius: self.radius,
+                first_row: row,
+                budget_bytes: budget,
+            };
+            let Some((mut out, next)) = camera_pass(scene, integrator, &job, stop) else {
                 return false;
             };
             let t1 = Instant::now();

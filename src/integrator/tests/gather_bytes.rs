@@ -5,7 +5,7 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use crate::integrator::Integrator;
-use crate::integrator::camera_pass::camera_pass;
+use crate::integrator::camera_pass::{CameraJob, camera_pass};
 use crate::integrator::gather::{Gather, bytes_for};
 use crate::scene::{build, build_integrator, load};
 use crate::world::Scene;
@@ -25,7 +25,14 @@ fn scene(file: &str, sets: &[&str]) -> (Scene, Integrator) {
 /// volume spheres) of one untiled pass.
 fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) {
     let never = AtomicBool::new(false);
-    let (mut out, rows) = camera_pass(s, integrator, 1, 0, 0, usize::MAX, &never).unwrap();
+    let job = CameraJob {
+        seed: 1,
+        pass: 0,
+        radius: integrator.settings.radius,
+        first_row: 0,
+        budget_bytes: usize::MAX,
+    };
+    let (mut out, rows) = camera_pass(s, integrator, &job, &never).unwrap();
     assert_eq!(rows, s.camera.resolution().1);
     let (surfaces, volumes) = (out.surfaces.len(), out.volumes.len());
     let predicted = bytes_for(&out);
