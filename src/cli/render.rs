@@ -81,6 +81,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     let (film, interrupted) = pool.install(|| -> anyhow::Result<(Film, bool)> {
         let scene = brume::scene::build(&loaded)?;
+        for w in &scene.warnings {
+            eprintln!("brume: warning: {w}");
+        }
         let mut renderer = match (resumed, range) {
             (Some(r), _) => Renderer::resume(&scene, seed, r.film).map_err(anyhow::Error::msg)?,
             (None, Some((a, _))) => Renderer::starting_at(&scene, seed, a),

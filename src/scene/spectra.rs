@@ -3,9 +3,9 @@
 
 use std::collections::BTreeMap;
 
-use super::LoadedScene;
 use super::desc::{RgbKind, SpectrumDesc, SpectrumRef};
-use super::error::{KeyText, Origin, SceneError};
+use super::error::SceneError;
+use super::loaded::LoadedScene;
 use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
 
 pub struct SpectrumResolver<'a> {
@@ -24,14 +24,7 @@ impl<'a> SpectrumResolver<'a> {
     }
 
     fn error(&self, key: &str, message: String) -> SceneError {
-        SceneError::Invalid {
-            origin: Origin::File {
-                file: self.scene.file.clone(),
-                line: None,
-            },
-            key: KeyText(key.to_string()),
-            message,
-        }
+        self.scene.invalid(key, message)
     }
 
     /// A reference whose RGB form means `kind`.
