@@ -2,13 +2,15 @@
 //! light, shape and material builds itself (see `lights/`, `shapes/`, `materials/`); this file
 //! holds the loops, the media and what depends on the whole scene (medium ids, world box).
 
+use std::collections::BTreeMap;
+
 use glam::Vec3;
 
-use super::desc::{IntegratorDesc, SceneDesc, SpectrumRef};
-use super::error::SceneError;
-use super::loaded::{LoadedScene, SceneWarning};
+use super::builder::{Builder, Inputs};
+use super::desc::{IntegratorDesc, MediumDesc, SceneDesc, ShapeDesc, SpectrumRef};
+use super::error::{SceneError, SceneWarning};
+use super::loaded::LoadedScene;
 use super::materials;
-use super::spectra::SpectrumResolver;
 use crate::camera::Camera;
 use crate::geometry::{Geometry, Ray};
 use crate::light::{Light, LightSet};
@@ -50,45 +52,20 @@ pub struct Scene {
     pub warnings: Vec<SceneWarning>,
 }
 
-/// What building a kind needs: the loaded scene (files, error positions), the spectral grid
-/// and the spectrum resolver.
-pub struct Builder<'a> {
-    pub scene: &'a LoadedScene,
-    pub grid: SpectralGrid,
-    pub spectra: SpectrumResolver<'a>,
-}
-
-impl Builder<'_> {
-    /// Id of the material named `name` (its place in name order).
-    pub fn material_id(&self, name: &str) -> Option<u32> {
-        let materials = &self.scene.desc.materials;
-        materials.keys().position(|k| k == name).map(|i| i as u32)
-    }
-
-    /// Id of the medium named `name` (its place in name order).
-    pub fn medium_id(&self, name: &str) -> Option<u32> {
-        let media = &self.scene.desc.media;
-        media.keys().position(|k| k == name).map(|i| i as u32)
-    }
-
-    /// The medium outside every shape.
-    pub fn outside_medium(&self) -> Option<u32> {
-        self.scene
-            .desc
-            .medium
-            .as_deref()
-            .and_then(|m| self.medium_id(m))
-    }
-}
-
 pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
     let d = &scene.desc;
     let grid = d.film.grid();
-    let b = Builder {
-        scene,
-        grid,
-        spectra: SpectrumResolver::new(scene, grid),
-    };
+    let b = Builder::new(
+        scene.source(),
+        Inputs {
+            grid,
+            spectra: &d.spectra,
+            materials: d.materials.keys().map(String::as_str).collect(),
+            media: d.media.keys().map(String::as_str).collect(),
+            outside: d.medium.as_deref(),
+            radius: d.integrator.radius,
+        },
+    );
     // Resolve every named spectrum once, so that a bad file is reported even if unused.
     for name in d.spectra.keys() {
         b.spectra.unbounded(
@@ -96,9 +73,9 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
             &format!("spectra.{name}"),
         )?;
     }
-    let media = build_media(&b)?;
-    let materials: Vec<Material> = materials::build_all(&b)?;
-    let (geometry, area_lights) = build_shapes(&b)?;
+    let media = build_media(&b, &d.media)?;
+    let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
+    let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
     let mut lights: Vec<Light> = area_lights
         .into_iter()
@@ -127,7 +104,7 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         world_max,
         settings: d.integrator.clone(),
         walk: MultiSphereWalk::new(d.integrator.q)
-            .map_err(|e| scene.invalid("integrator.q", e.to_string()))?,
+            .map_err(|e| scene.source().invalid("integrator.q", e.to_string()))?,
         desc: d.clone(),
         warnings,
     };
@@ -136,24 +113,27 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
 }
 
 // Media are built as before (their description is being reworked separately).
-fn build_media(b: &Builder) -> Result<Vec<HomogeneousMedium>, SceneError> {
-    b.scene
-        .desc
-        .media
+fn build_media(
+    b: &Builder,
+    media: &BTreeMap<String, MediumDesc>,
+) -> Result<Vec<HomogeneousMedium>, SceneError> {
+    media
         .iter()
         .map(|(name, m)| {
             let key = format!("media.{name}");
             let ss = b.spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
             let sa = b.spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
             HomogeneousMedium::new(&ss, &sa, m.g, b.grid.n)
-                .map_err(|e| b.scene.invalid(&key, e.to_string()))
+                .map_err(|e| b.source.invalid(&key, e.to_string()))
         })
         .collect()
 }
 
 /// The geometry, and the radiance of each emitting shape by shape id.
-fn build_shapes(b: &Builder) -> Result<(Geometry, Vec<(u32, Spectrum)>), SceneError> {
-    let descs = &b.scene.desc.shapes;
+fn build_shapes(
+    b: &Builder,
+    descs: &[ShapeDesc],
+) -> Result<(Geometry, Vec<(u32, Spectrum)>), SceneError> {
     let mut shapes = Vec::with_capacity(descs.len());
     let mut area_lights = Vec::new();
     for (i, s) in descs.iter().enumerate() {
@@ -164,7 +144,7 @@ fn build_shapes(b: &Builder) -> Result<(Geometry, Vec<(u32, Spectrum)>), SceneEr
         }
         shapes.push(shape);
     }
-    let geometry = Geometry::new(shapes).map_err(|e| b.scene.invalid("shapes", e.to_string()))?;
+    let geometry = Geometry::new(shapes).map_err(|e| b.source.invalid("shapes", e.to_string()))?;
     Ok((geometry, area_lights))
 }
 
@@ -199,10 +179,11 @@ fn world_box(geometry: &Geometry, camera: &Camera, radius: f32) -> (Vec3, Vec3) 
 
 /// Warnings that need the built scene: no light that emits, a radius as large as the scene.
 fn warnings(scene: &LoadedScene, geometry: &Geometry, lights: &LightSet) -> Vec<SceneWarning> {
+    let source = scene.source();
     let mut w = Vec::new();
     let emits = (0..lights.lights().len()).any(|i| lights.pick_probability(i) > 0.0);
     if !emits {
-        w.push(scene.warning(
+        w.push(source.warning(
             "",
             "the scene has no light that emits ([[lights]], or shapes with `emit`): the image \
              will be black",
@@ -212,7 +193,7 @@ fn warnings(scene: &LoadedScene, geometry: &Geometry, lights: &LightSet) -> Vec<
     let bounds = geometry.bounds();
     let size = bounds.diagonal().length();
     if !bounds.is_empty() && size > 0.0 && radius > LARGE_RADIUS * size {
-        w.push(scene.warning(
+        w.push(source.warning(
             "integrator.radius",
             format!(
                 "{radius} m is {:.0} % of the scene's size ({size:.3} m across its bounds): \

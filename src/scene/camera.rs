@@ -3,7 +3,7 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::exact;
+use crate::scene::desc::array::exact;
 
 use super::check::Checker;
 use crate::camera::Camera;
@@ -101,6 +101,11 @@ impl CameraDesc {
                 ),
             );
         }
+        self.check_projection(c, key);
+    }
+
+    /// The keys of the projection in use; the other projection's keys are refused.
+    fn check_projection(&self, c: &mut Checker, key: &str) {
         match self.projection {
             Projection::Perspective => {
                 if let Some(fov) = self.fov {

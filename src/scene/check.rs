@@ -4,8 +4,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::desc::{RgbKind, SpectrumDesc, SpectrumRef};
-use super::loaded::LoadedScene;
+use super::desc::spectra::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::source::Source;
 
 /// One problem: the dotted key it is about and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,15 +31,24 @@ fn builtin_list() -> String {
         .join(", ")
 }
 
+/// The names defined in a scene's sections, which other tables refer to.
+pub struct Names<'a> {
+    pub spectra: &'a BTreeMap<String, SpectrumDesc>,
+    pub materials: Vec<&'a str>,
+    pub media: Vec<&'a str>,
+}
+
 pub struct Checker<'a> {
-    pub scene: &'a LoadedScene,
+    pub source: Source<'a>,
+    pub names: Names<'a>,
     pub problems: Vec<Problem>,
 }
 
 impl<'a> Checker<'a> {
-    pub fn new(scene: &'a LoadedScene) -> Self {
+    pub fn new(source: Source<'a>, names: Names<'a>) -> Self {
         Self {
-            scene,
+            source,
+            names,
             problems: Vec::new(),
         }
     }
@@ -99,7 +108,7 @@ impl<'a> Checker<'a> {
     }
 
     pub fn file(&mut self, key: &str, rel: &str) {
-        let p = self.scene.resolve(rel);
+        let p = self.source.resolve(rel);
         if !p.is_file() {
             self.fail(key, format!("file not found: {}", p.display()));
         }
@@ -108,7 +117,7 @@ impl<'a> Checker<'a> {
     /// A texture file: present, readable as an image, and of sane size, judged from its header
     /// so that a forged or absurd file is refused before its pixels are allocated.
     pub fn texture(&mut self, key: &str, rel: &str) {
-        let p = self.scene.resolve(rel);
+        let p = self.source.resolve(rel);
         if !p.is_file() {
             return self.fail(key, format!("file not found: {}", p.display()));
         }
@@ -144,9 +153,9 @@ impl<'a> Checker<'a> {
             }
             SpectrumRef::Named(n) => {
                 let file = n.split(':').next().unwrap_or(n);
-                if !self.scene.desc.spectra.contains_key(n)
+                if !self.names.spectra.contains_key(n)
                     && !is_builtin(n)
-                    && !self.scene.resolve(file).is_file()
+                    && !self.source.resolve(file).is_file()
                 {
                     self.fail(
                         key,
@@ -194,7 +203,7 @@ impl<'a> Checker<'a> {
         {
             // `file.csv:column` names a column of the file.
             let path = match f.rsplit_once(':') {
-                Some((p, _)) if !self.scene.resolve(f).is_file() => p,
+                Some((p, _)) if !self.source.resolve(f).is_file() => p,
                 _ => f,
             };
             self.file(&format!("{key}.file"), path);
@@ -246,23 +255,33 @@ impl<'a> Checker<'a> {
         }
     }
 
-    /// `name` is a key of `map` (a section of the scene: materials, media).
-    pub fn reference<T>(&mut self, key: &str, name: &str, map: &BTreeMap<String, T>, what: &str) {
-        if !map.contains_key(name) {
-            let known: Vec<&str> = map.keys().map(String::as_str).collect();
-            self.fail(
-                key,
-                format!(
-                    "no {what} named `{name}` (defined: {})",
-                    if known.is_empty() {
-                        "none".into()
-                    } else {
-                        known.join(", ")
-                    }
-                ),
-            );
+    /// `name` is a material of the scene.
+    pub fn material(&mut self, key: &str, name: &str) {
+        if let Some(m) = undefined(name, &self.names.materials, "material") {
+            self.fail(key, m);
         }
     }
+
+    /// `name` is a medium of the scene.
+    pub fn medium(&mut self, key: &str, name: &str) {
+        if let Some(m) = undefined(name, &self.names.media, "medium") {
+            self.fail(key, m);
+        }
+    }
+}
+
+/// The message for a reference to a `what` that is not among `known`.
+fn undefined(name: &str, known: &[&str], what: &str) -> Option<String> {
+    (!known.contains(&name)).then(|| {
+        format!(
+            "no {what} named `{name}` (defined: {})",
+            if known.is_empty() {
+                "none".into()
+            } else {
+                known.join(", ")
+            }
+        )
+    })
 }
 
 /// The message for a reflectance above one.

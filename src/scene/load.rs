@@ -97,7 +97,7 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
             .collect(),
     };
     if let Some(problem) = validate::validate(&loaded).into_iter().next() {
-        return Err(loaded.invalid(&problem.key, problem.message));
+        return Err(loaded.source().invalid(&problem.key, problem.message));
     }
     Ok(loaded)
 }

@@ -6,6 +6,7 @@
 //! reads tables whose `type` key picks the kind.
 
 mod build;
+mod builder;
 mod camera;
 mod check;
 pub mod desc;
@@ -16,6 +17,7 @@ mod loaded;
 mod materials;
 mod path;
 mod shapes;
+mod source;
 mod spectra;
 pub mod summary;
 mod tagged;
@@ -24,8 +26,9 @@ mod validate;
 pub use build::{LARGE_RADIUS, Scene, build};
 pub use camera::{MAX_PIXELS, MAX_SIDE};
 pub use check::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_SIDE};
-pub use error::{Origin, SceneError};
+pub use error::{Origin, SceneError, SceneWarning};
 pub use lights::{MAX_IRRADIANCE, MAX_POWER};
 pub use load::{load, load_str};
-pub use loaded::{LoadedScene, SceneWarning};
+pub use loaded::LoadedScene;
 pub use shapes::MAX_RADIANCE;
+pub use source::Source;

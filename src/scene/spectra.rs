@@ -3,28 +3,33 @@
 
 use std::collections::BTreeMap;
 
-use super::desc::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::desc::spectra::{RgbKind, SpectrumDesc, SpectrumRef};
 use super::error::SceneError;
-use super::loaded::LoadedScene;
+use super::source::Source;
 use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
 
 pub struct SpectrumResolver<'a> {
-    scene: &'a LoadedScene,
+    source: Source<'a>,
     grid: SpectralGrid,
     named: &'a BTreeMap<String, SpectrumDesc>,
 }
 
 impl<'a> SpectrumResolver<'a> {
-    pub fn new(scene: &'a LoadedScene, grid: SpectralGrid) -> Self {
+    /// `named`: the scene's `[spectra]`.
+    pub fn new(
+        source: Source<'a>,
+        grid: SpectralGrid,
+        named: &'a BTreeMap<String, SpectrumDesc>,
+    ) -> Self {
         Self {
-            scene,
+            source,
             grid,
-            named: &scene.desc.spectra,
+            named,
         }
     }
 
     fn error(&self, key: &str, message: String) -> SceneError {
-        self.scene.invalid(key, message)
+        self.source.invalid(key, message)
     }
 
     /// A reference whose RGB form means `kind`.
@@ -55,7 +60,7 @@ impl<'a> SpectrumResolver<'a> {
         {
             spec.to_string()
         } else {
-            self.scene.resolve(spec).to_string_lossy().into_owned()
+            self.source.resolve(spec).to_string_lossy().into_owned()
         };
         let data = spectrum::resolve(&resolved, column, false)
             .map_err(|e| self.error(key, e.to_string()))?;

@@ -128,27 +128,33 @@ where
         ));
     };
     let shared = struct_fields::<C>();
-    let mut common = DeTable::default();
-    let mut body = DeTable::default();
+    // The first key (in the text) that no part reads; the map itself is sorted by key.
+    let unknown = entries
+        .keys()
+        .filter(|k| {
+            let k = k.get_ref().as_ref();
+            k != "type" && !shared.contains(&k) && !own.contains(&k)
+        })
+        .min_by_key(|k| k.span().start);
+    if let Some(key) = unknown {
+        let k = key.get_ref().as_ref();
+        let mut expected = vec!["type"];
+        expected.extend_from_slice(shared);
+        expected.extend_from_slice(own);
+        let message = format!(
+            "unknown field `{k}` for a {name} {}, expected one of {}",
+            K::WHAT,
+            list(&expected)
+        );
+        return Err(Fault::at(k, message, Some(key.span())));
+    }
+    let (mut common, mut body) = (DeTable::default(), DeTable::default());
     for (key, value) in entries {
         let k = key.get_ref().as_ref();
-        if k == "type" {
-            continue;
-        }
         if shared.contains(&k) {
             common.insert(key, value);
-        } else if own.contains(&k) {
+        } else if k != "type" {
             body.insert(key, value);
-        } else {
-            let mut expected = vec!["type"];
-            expected.extend_from_slice(shared);
-            expected.extend_from_slice(own);
-            let message = format!(
-                "unknown field `{k}` for a {name} {}, expected one of {}",
-                K::WHAT,
-                list(&expected)
-            );
-            return Err(Fault::at(k, message, Some(key.span())));
         }
     }
     let common = traced(part(&span, common), |d| C::deserialize(d))?;

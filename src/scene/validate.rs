@@ -2,14 +2,19 @@
 //! the sections without kinds here, each kind of light, shape, material and the camera beside
 //! its own description.
 
-use super::check::{Checker, Problem};
+use super::check::{Checker, Names, Problem};
 use super::desc::{FilmDesc, IntegratorDesc, SceneDesc};
 use super::loaded::LoadedScene;
 use crate::spectrum::MAX_BINS;
 
 pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     let d = &scene.desc;
-    let mut c = Checker::new(scene);
+    let names = Names {
+        spectra: &d.spectra,
+        materials: d.materials.keys().map(String::as_str).collect(),
+        media: d.media.keys().map(String::as_str).collect(),
+    };
+    let mut c = Checker::new(scene.source(), names);
     film(&mut c, &d.film);
     d.camera.check(&mut c, "camera");
     integrator(&mut c, &d.integrator);
@@ -116,6 +121,6 @@ fn media(c: &mut Checker, d: &SceneDesc) {
         }
     }
     if let Some(m) = &d.medium {
-        c.reference("medium", m, &d.media, "medium");
+        c.medium("medium", m);
     }
 }

@@ -5,11 +5,13 @@
 //! `scene/materials/`) and re-exported here. docs/scene-format.md documents every field; keep
 //! the two in step.
 
-mod array;
-mod film;
-mod integrator;
-mod media;
-mod spectra;
+// Leaf descriptions, which the kinds' modules use by these paths (not through this module,
+// which gathers the kinds: that would be an import cycle).
+pub(crate) mod array;
+pub(crate) mod film;
+pub(crate) mod integrator;
+pub(crate) mod media;
+pub(crate) mod spectra;
 
 use std::collections::BTreeMap;
 
@@ -29,7 +31,6 @@ pub use super::shapes::{
     BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
     TransformDesc,
 };
-pub(crate) use array::exact;
 pub use film::FilmDesc;
 pub use integrator::{ChannelPickDesc, GatherMode, IntegratorDesc, VolumeKind};
 pub use media::MediumDesc;

@@ -3,7 +3,7 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::exact;
+use crate::scene::desc::array::exact;
 
 use super::MAX_IRRADIANCE;
 use crate::light::Light;

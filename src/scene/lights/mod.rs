@@ -13,9 +13,9 @@ pub use laser::LaserDesc;
 pub use point::PointDesc;
 pub use spot::SpotDesc;
 
-use super::build::Builder;
+use super::builder::Builder;
 use super::check::Checker;
-use super::desc::SpectrumRef;
+use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
 use super::tagged::{Tagged, kinds};
 use crate::light::Light;
@@ -74,13 +74,12 @@ impl LightDesc {
         // Normalise the shape so that its integral over the spectral range is 1 (per nm).
         let integral = shape.sum() as f64 * b.grid.width();
         if integral <= 0.0 {
-            return Err(b
-                .scene
-                .invalid(&spectrum_key, "the spectrum is zero over the film's range"));
+            let message = "the spectrum is zero over the film's range";
+            return Err(b.source.invalid(&spectrum_key, message));
         }
         let unit = shape * (1.0 / integral as f32);
         Ok(match &self.kind {
-            LightKind::Directional(l) => l.build(unit, b.scene.desc.integrator.radius),
+            LightKind::Directional(l) => l.build(unit, b.radius),
             LightKind::Point(l) => l.build(unit),
             LightKind::Spot(l) => l.build(unit),
             LightKind::Laser(l) => l.build(unit),

@@ -6,9 +6,9 @@ use std::sync::Arc;
 
 use super::texture::TextureDesc;
 use crate::material::Albedo;
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::{Checker, above_one};
-use crate::scene::desc::SpectrumRef;
+use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
 use crate::spectrum::Spectrum;
 
@@ -51,7 +51,7 @@ impl AlbedoKeys<'_> {
         };
         let max = s.max_value();
         if max > 1.0 && !self.allow_energy_gain {
-            return Err(b.scene.invalid(&key, above_one(max as f64)));
+            return Err(b.source.invalid(&key, above_one(max as f64)));
         }
         Ok(s)
     }
@@ -76,10 +76,10 @@ impl AlbedoKeys<'_> {
         };
         let loaded = t.load(b, &key, b.grid.n, &convert)?;
         if loaded.max > 1.0 && !gain {
-            return Err(b.scene.invalid(&key, above_one(loaded.max as f64)));
+            return Err(b.source.invalid(&key, above_one(loaded.max as f64)));
         }
         if loaded.min < 0.0 {
-            return Err(b.scene.invalid(
+            return Err(b.source.invalid(
                 &key,
                 format!(
                     "holds a negative value ({}): a reflectance is >= 0",

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::texture::WeightDesc;
 use crate::material::{BlendWeight, Material};
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
 use crate::scene::error::SceneError;
 use crate::spectrum::Spectrum;
@@ -25,9 +25,8 @@ pub struct BlendDesc {
 
 impl BlendDesc {
     pub(super) fn check(&self, c: &mut Checker, key: &str) {
-        let materials = &c.scene.desc.materials;
         for (k, name) in [("first", &self.first), ("second", &self.second)] {
-            c.reference(&format!("{key}.{k}"), name, materials, "material");
+            c.material(&format!("{key}.{k}"), name);
         }
         let key = format!("{key}.weight");
         match &self.weight {
@@ -54,7 +53,7 @@ impl BlendDesc {
                 let loaded = t.load(b, &key, 1, &luminance)?;
                 let (lo, hi) = loaded.texture.value_range();
                 if lo < 0.0 || hi > 1.0 {
-                    return Err(b.scene.invalid(
+                    return Err(b.source.invalid(
                         &key,
                         format!("a weight texture's values must lie in [0, 1], found {lo}..{hi}"),
                     ));

@@ -5,9 +5,9 @@ use serde::{Deserialize, Serialize};
 use super::albedo::AlbedoKeys;
 use super::texture::{self, TextureDesc};
 use crate::material::Material;
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
-use crate::scene::desc::SpectrumRef;
+use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
 
 #[derive(Clone, Debug, Serialize, Deserialize)]

@@ -4,9 +4,9 @@ use serde::{Deserialize, Serialize};
 
 use super::albedo::AlbedoKeys;
 use crate::material::Material;
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
-use crate::scene::desc::SpectrumRef;
+use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
 
 #[derive(Clone, Debug, Serialize, Deserialize)]

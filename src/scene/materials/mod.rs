@@ -21,9 +21,9 @@ pub use lambert::LambertDesc;
 pub use mirror::MirrorDesc;
 pub use texture::{TextureDesc, WeightDesc};
 
-use super::build::Builder;
+use super::builder::Builder;
 use super::check::Checker;
-use super::desc::SpectrumRef;
+use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
 use super::tagged::{Tagged, kinds};
 use crate::material::Material;
@@ -122,12 +122,15 @@ fn cycle_through(start: &str, materials: &BTreeMap<String, MaterialDesc>) -> Opt
     None
 }
 
-/// Every material in name order (the order of material ids), each blend from its parts.
-pub fn build_all(b: &Builder) -> Result<Vec<Material>, SceneError> {
-    let descs = &b.scene.desc.materials;
+/// Every material of `descs` in name order (the order of material ids), each blend from its
+/// parts.
+pub fn build_all(
+    b: &Builder,
+    descs: &BTreeMap<String, MaterialDesc>,
+) -> Result<Vec<Material>, SceneError> {
     let mut built: BTreeMap<&str, Material> = BTreeMap::new();
     for name in descs.keys() {
-        build_into(b, name, &mut built, 0)?;
+        build_into(b, descs, name, &mut built, 0)?;
     }
     Ok(descs
         .keys()
@@ -136,7 +139,8 @@ pub fn build_all(b: &Builder) -> Result<Vec<Material>, SceneError> {
 }
 
 fn build_into<'a>(
-    b: &Builder<'a>,
+    b: &Builder,
+    descs: &'a BTreeMap<String, MaterialDesc>,
     name: &'a str,
     built: &mut BTreeMap<&'a str, Material>,
     depth: usize,
@@ -144,14 +148,13 @@ fn build_into<'a>(
     if built.contains_key(name) {
         return Ok(());
     }
-    let descs = &b.scene.desc.materials;
     let key = format!("materials.{name}");
     let Some(desc) = descs.get(name) else {
-        return Err(b.scene.invalid(&key, "no such material"));
+        return Err(b.source.invalid(&key, "no such material"));
     };
     // Validation refuses cycles; this bound keeps a scene built without it finite.
     if depth > descs.len() {
-        return Err(b.scene.invalid(&key, "a blend cannot contain itself"));
+        return Err(b.source.invalid(&key, "a blend cannot contain itself"));
     }
     let m = match &desc.kind {
         MaterialKind::Lambert(m) => m.build(b, &key)?,
@@ -160,11 +163,11 @@ fn build_into<'a>(
         MaterialKind::Dielectric(m) => m.build(b, &key)?,
         MaterialKind::Blend(m) => {
             let part = |built: &mut BTreeMap<&'a str, Material>, part: &'a str| {
-                build_into(b, part, built, depth + 1)?;
-                built
-                    .get(part)
-                    .cloned()
-                    .ok_or_else(|| b.scene.invalid(&key, format!("no material named `{part}`")))
+                build_into(b, descs, part, built, depth + 1)?;
+                built.get(part).cloned().ok_or_else(|| {
+                    b.source
+                        .invalid(&key, format!("no material named `{part}`"))
+                })
             };
             let first = part(built, &m.first)?;
             let second = part(built, &m.second)?;

@@ -10,7 +10,7 @@ use serde::de::{MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::material::{Encoding, Texture, Wrap};
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
 use crate::scene::error::SceneError;
 use crate::spectrum::Spectrum;
@@ -64,7 +64,7 @@ impl TextureDesc {
         n_bins: usize,
         to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
     ) -> Result<Loaded, SceneError> {
-        let path = b.scene.resolve(&self.file);
+        let path = b.source.resolve(&self.file);
         let (lo, hi) = (Cell::new(f32::INFINITY), Cell::new(f32::NEG_INFINITY));
         let finite = Cell::new(true);
         let seen = |rgb: [f32; 3]| {
@@ -76,9 +76,9 @@ impl TextureDesc {
             to_spectrum(rgb)
         };
         let texture = Texture::load_encoded(&path, self.encoding(&path), n_bins, &seen)
-            .map_err(|e| b.scene.invalid(key, e.to_string()))?;
+            .map_err(|e| b.source.invalid(key, e.to_string()))?;
         if !finite.get() {
-            return Err(b.scene.invalid(
+            return Err(b.source.invalid(
                 key,
                 format!(
                     "{}: holds values that are not finite numbers",

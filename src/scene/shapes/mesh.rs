@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::{self, ShapeKind};
-use crate::scene::build::Builder;
+use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
 use crate::scene::error::SceneError;
 
@@ -21,7 +21,7 @@ impl MeshDesc {
 
     pub(super) fn build(&self, b: &Builder, key: &str) -> Result<ShapeKind, SceneError> {
         let key = format!("{key}.file");
-        geometry::load_obj(&b.scene.resolve(&self.file))
-            .map_err(|e| b.scene.invalid(&key, e.to_string()))
+        geometry::load_obj(&b.source.resolve(&self.file))
+            .map_err(|e| b.source.invalid(&key, e.to_string()))
     }
 }

@@ -11,7 +11,7 @@ mod sphere;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::exact;
+use crate::scene::desc::array::exact;
 
 pub use cuboid::BoxDesc;
 pub use disc::DiscDesc;
@@ -19,9 +19,9 @@ pub use mesh::MeshDesc;
 pub use quad::QuadDesc;
 pub use sphere::SphereDesc;
 
-use super::build::Builder;
+use super::builder::Builder;
 use super::check::Checker;
-use super::desc::SpectrumRef;
+use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
 use super::tagged::{Tagged, kinds};
 use crate::geometry::{self, ShapeKind, Transform};
@@ -109,13 +109,12 @@ impl ShapeDesc {
             ShapeKindDesc::Mesh(s) => s.check(c, key),
         }
         let s = &self.common;
-        let d = &c.scene.desc;
         if let Some(m) = &s.material {
-            c.reference(&format!("{key}.material"), m, &d.materials, "material");
+            c.material(&format!("{key}.material"), m);
         }
         for (k, v) in [("interior", &s.interior), ("exterior", &s.exterior)] {
             if let Some(m) = v {
-                c.reference(&format!("{key}.{k}"), m, &d.media, "medium");
+                c.medium(&format!("{key}.{k}"), m);
             }
         }
         if let Some(e) = &s.emit {
@@ -173,7 +172,7 @@ fn emission(b: &Builder, key: &str, e: &SpectrumRef, scale: f32) -> Result<Spect
     let radiance = b.spectra.emission(e, &format!("{key}.emit"))? * scale;
     let max = radiance.max_value();
     if !(max.is_finite() && max <= MAX_RADIANCE) {
-        return Err(b.scene.invalid(
+        return Err(b.source.invalid(
             &format!("{key}.emit"),
             format!(
                 "an emitted radiance of {max:e} W/(m^2 sr nm) (emit x emit_scale) is above the \
