@@ -282,6 +282,12 @@ fn kind_table_errors_keep_their_exact_positions() {
             "> 0",
         ),
         (
+            "position = [0, 0, 3]",
+            "position = [0, \"x\", 3]",
+            "18:16: key `lights.0.position.1`",
+            "invalid type",
+        ),
+        (
             "angle = 30\n",
             "",
             "16:1: key `lights.0`",

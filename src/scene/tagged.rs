@@ -201,7 +201,8 @@ fn traced<'de, T>(
 ) -> Result<T, Fault> {
     let mut track = serde_path_to_error::Track::new();
     f(serde_path_to_error::Deserializer::new(de, &mut track)).map_err(|e| {
-        let path = track.path().to_string();
+        // Dotted as everywhere in brume: `position[1]` is `position.1`.
+        let path = track.path().to_string().replace('[', ".").replace(']', "");
         let path = path.trim_matches('.');
         let path = if path == "?" { "" } else { path };
         // A fault about the whole part (a missing key) is placed at the table's header by the
