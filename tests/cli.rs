@@ -138,8 +138,42 @@ fn info_succeeds_on_every_shipped_scene() {
                 String::from_utf8_lossy(&out.stderr)
             );
             assert!(String::from_utf8_lossy(&out.stdout).contains("integration volumes"));
+            assert!(out.stderr.is_empty(), "no warnings on shipped scenes");
         }
     }
+}
+
+/// `brume info` shows the scene file's spellings, and prints the scene's warnings (here: no
+/// light) on stderr without failing.
+#[test]
+fn info_speaks_the_file_format_and_prints_warnings() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = write_scene(dir.path(), SCENE);
+    let out = brume()
+        .arg("info")
+        .arg(&scene)
+        .args(["--set", "integrator.volume=cylinder-truncated"])
+        .args(["--set", "integrator.mode=see-through"])
+        .output()
+        .expect("run brume");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("volume cylinder-truncated, mode see-through"),
+        "{stdout}"
+    );
+    let dark = SCENE.replace("[[lights]]", "[[ignored]]");
+    let dark = dark
+        .split("[[ignored]]")
+        .next()
+        .expect("scene before the light");
+    let scene = write_scene(dir.path(), dark);
+    let out = brume().arg("info").arg(&scene).output().expect("run brume");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.starts_with("brume: warning: ") && err.contains("no light that emits"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -1,10 +1,11 @@
-//! Textures: bilinear lookup with repeat wrap, PNG (sRGB) and EXR loading, errors naming the file;
+//! Textures: bilinear lookup with repeat or clamp wrap, PNG and EXR loading in sRGB or linear
+//! encoding, errors naming the file, scene textures (EXR, options, texels above 1);
 //! and OBJ meshes through the same path a scene takes.
 
 use std::sync::Arc;
 
 use brume::geometry::{Geometry, Hit, Ray, ShapeDesc, ShapeKind, Transform, load_obj};
-use brume::material::{Material, Texture};
+use brume::material::{Encoding, Material, Texture, Wrap};
 use brume::spectrum::Spectrum;
 use glam::{Vec2, Vec3};
 
@@ -145,4 +146,145 @@ fn obj_meshes_load_with_uvs_and_normals() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("missing.obj"), "{err}");
+}
+
+#[test]
+fn colour_space_and_wrap() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("t.png");
+    let mut img = image::RgbImage::new(2, 1);
+    img.put_pixel(0, 0, image::Rgb([255, 0, 0]));
+    img.put_pixel(1, 0, image::Rgb([0, 188, 255]));
+    img.save(&png).unwrap();
+    let linear = Texture::load_encoded(&png, Encoding::Linear, 4, &conv).unwrap();
+    let right = linear.lookup(Vec2::new(0.75, 0.5));
+    assert!(close(right[1], 188.0 / 255.0), "stored value: {}", right[1]);
+    let srgb = Texture::load_encoded(&png, Encoding::Srgb, 4, &conv).unwrap();
+    assert!((srgb.lookup(Vec2::new(0.75, 0.5))[1] - 0.503).abs() < 0.01);
+
+    let exr_path = dir.path().join("t.exr");
+    exr::prelude::write_rgb_file(&exr_path, 1, 1, |_, _| (0.5f32, 0.5f32, 0.5f32)).unwrap();
+    assert_eq!(Encoding::default_for(&exr_path), Encoding::Linear);
+    assert_eq!(Encoding::default_for(&png), Encoding::Srgb);
+    let t = Texture::load_encoded(&exr_path, Encoding::Srgb, 4, &conv).unwrap();
+    assert!(
+        (t.lookup(Vec2::splat(0.5))[0] - 0.214).abs() < 0.001,
+        "sRGB-decoded EXR"
+    );
+
+    // 2 x 1: red | green. Repeat wraps u = 0 between the two columns; clamp keeps the edge.
+    let rgb = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let repeat = Texture::from_rgb(2, 1, &rgb, 4, &conv);
+    assert!(close(repeat.lookup(Vec2::new(0.0, 0.5))[0], 0.5));
+    let clamp = Texture::from_rgb(2, 1, &rgb, 4, &conv).with_wrap(Wrap::Clamp);
+    assert_eq!(clamp.wrap(), Wrap::Clamp);
+    assert!(close(clamp.lookup(Vec2::new(0.0, 0.5))[0], 1.0));
+    assert!(close(clamp.lookup(Vec2::new(-3.0, 7.0))[0], 1.0));
+    assert!(close(clamp.lookup(Vec2::new(5.0, 0.5))[1], 1.0));
+    assert_eq!(
+        repeat.lookup(Vec2::new(0.25, 0.5)),
+        clamp.lookup(Vec2::new(0.25, 0.5)),
+        "inside, the two agree"
+    );
+}
+
+const TEXTURED: &str = r#"
+[camera]
+width = 8
+height = 8
+
+[materials.wall]
+type = "lambert"
+albedo = 1.0
+texture = TEXTURE
+
+[[shapes]]
+type = "quad"
+size = [1, 1]
+material = "wall"
+"#;
+
+fn textured(dir: &std::path::Path, texture: &str) -> Result<brume::scene::Scene, String> {
+    let text = TEXTURED.replace("TEXTURE", texture);
+    let loaded =
+        brume::scene::load_str(&text, &dir.join("scene.toml"), &[]).map_err(|e| e.to_string())?;
+    brume::scene::build(&loaded).map_err(|e| e.to_string())
+}
+
+fn albedo_at(scene: &brume::scene::Scene, uv: Vec2) -> Spectrum {
+    match &scene.materials[0] {
+        Material::Lambert { albedo } => albedo.at(uv),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Scenes take EXR textures (docs/scene-format.md said so; the header check refused them),
+/// `colour_space` and `wrap`; texels above 1 are an albedo above 1 and need
+/// `allow_energy_gain`; texels that are not finite are refused.
+#[test]
+fn scene_textures_exr_colour_space_and_wrap() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, v: f32| {
+        exr::prelude::write_rgb_file(dir.path().join(name), 2, 1, |x, _| {
+            if x == 0 {
+                (v, v, v)
+            } else {
+                (0.25f32, 0.25, 0.25)
+            }
+        })
+        .unwrap()
+    };
+    write("half.exr", 0.5);
+    write("bright.exr", 1.5);
+    write("nan.exr", f32::NAN);
+    let s = textured(dir.path(), "\"half.exr\"").unwrap_or_else(|e| panic!("{e}"));
+    let left = albedo_at(&s, Vec2::new(0.25, 0.5));
+    assert!(
+        (left[0] - 0.5).abs() < 0.02,
+        "EXR is linear by default: {}",
+        left[0]
+    );
+
+    let srgb = textured(
+        dir.path(),
+        "{ file = \"half.exr\", colour_space = \"srgb\" }",
+    )
+    .unwrap();
+    assert!((albedo_at(&srgb, Vec2::new(0.25, 0.5))[0] - 0.214).abs() < 0.02);
+    let clamp = textured(dir.path(), "{ file = \"half.exr\", wrap = \"clamp\" }").unwrap();
+    let edge = albedo_at(&clamp, Vec2::new(0.0, 0.5))[0];
+    let wrapped = albedo_at(&s, Vec2::new(0.0, 0.5))[0];
+    assert!(
+        (edge - 0.5).abs() < 0.02 && (wrapped - 0.375).abs() < 0.02,
+        "{edge} {wrapped}"
+    );
+
+    let e = textured(dir.path(), "\"bright.exr\"")
+        .err()
+        .expect("texel above 1");
+    assert!(
+        e.starts_with(&format!(
+            "{}:9:1: key `materials.wall.texture`",
+            dir.path().join("scene.toml").display()
+        )) && e.contains("allow_energy_gain"),
+        "{e}"
+    );
+    let text = "\"bright.exr\"\nallow_energy_gain = true";
+    let bright = textured(dir.path(), text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(albedo_at(&bright, Vec2::new(0.25, 0.5))[0] > 1.2);
+    let e = textured(dir.path(), "\"nan.exr\"")
+        .err()
+        .expect("NaN texel");
+    assert!(e.contains("not finite"), "{e}");
+    let e = textured(dir.path(), "{ file = \"half.exr\", wrap = \"mirror\" }")
+        .err()
+        .expect("unknown wrap");
+    assert!(
+        e.contains(":9:") && e.contains("key `materials.wall.texture.wrap`"),
+        "{e}"
+    );
+    let e = textured(dir.path(), "{ file = \"half.exr\", gamma = 2.2 }")
+        .err()
+        .expect("unknown key");
+    assert!(e.contains("key `materials.wall.texture.gamma`"), "{e}");
 }

@@ -52,6 +52,9 @@ const KEYS: &[&str] = &[
     "shapes.0.transform.scale",
     "materials.wall.albedo",
     "materials.wall.texture",
+    "materials.floor.weight",
+    "materials.coat.texture.wrap",
+    "lights.0.type",
 ];
 
 const VALUES: &[&str] = &[

@@ -127,3 +127,63 @@ fn a_render_larger_than_memory_needs_force() {
     assert!(err.contains("--force") && err.contains("GiB"), "{err}");
     assert!(!t.path().join("x.exr").exists());
 }
+
+/// The bound on light power is where the film's fixed-point sums stop holding a render: a lamp
+/// of `MAX_POWER` renders with nothing dropped, while one 1e21 times brighter (1e30 W, which the
+/// audit found rendering black with rc 0) loses its samples. The scene refuses it beforehand.
+#[test]
+fn the_largest_accepted_light_power_renders_and_a_larger_one_would_not() {
+    use brume::integrator::{Budget, Renderer};
+    use brume::light::{Light, LightSet};
+    let text = format!(
+        r#"
+[camera]
+type = "orthographic"
+width = 16
+height = 16
+position = [0, 0, 2]
+[integrator]
+forward_rays = 20000
+[materials.wall]
+type = "lambert"
+albedo = 0.5
+[[shapes]]
+type = "quad"
+size = [1, 1]
+material = "wall"
+[[lights]]
+type = "point"
+position = [0, 0, 1]
+power = {}
+"#,
+        brume::scene::MAX_POWER
+    );
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let loaded = load_str(&text, &dir.join("scene.toml"), &[]).expect("the bound is accepted");
+    let mut scene = brume::scene::build(&loaded).expect("builds");
+    let render = |scene: &brume::scene::Scene| {
+        let integrator = brume::scene::build_integrator(&loaded, scene).expect("integrator");
+        let mut r = Renderer::new(scene, integrator, 5);
+        r.run(Budget::Passes(2), |_, _| {});
+        let mean = r.image().data.iter().map(|v| *v as f64).sum::<f64>();
+        (r.film().dropped, mean)
+    };
+    let (dropped, sum) = render(&scene);
+    assert_eq!(dropped, 0, "nothing dropped at the bound");
+    assert!(sum.is_finite() && sum > 0.0);
+
+    let Light::Point { position, power } = scene.lights.lights()[0].clone() else {
+        panic!("a point light")
+    };
+    let brighter = Light::point(position, power * 1e21);
+    scene.lights = LightSet::new(vec![brighter], &scene.geometry);
+    let (dropped, _) = render(&scene);
+    assert!(dropped > 0, "1e30 W overflows the film");
+
+    let e = error(
+        &text.replace("power = 1000000000", "power = 1e30"),
+        &dir,
+        &[],
+    );
+    assert!(e.contains("key `lights.0.power`"), "{e}");
+}

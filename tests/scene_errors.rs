@@ -178,3 +178,361 @@ fn every_shipped_scene_loads() {
     }
     assert!(count >= 1, "no scenes found");
 }
+
+/// A scene with one kind of each table, for the per-kind rules.
+const KINDS: &str = r#"
+[camera]
+width = 64
+height = 48
+
+[materials.wall]
+type = "lambert"
+albedo = 0.4
+
+[[shapes]]
+type = "quad"
+size = [1, 1]
+material = "wall"
+transform = { translate = [0, 0, 1] }
+
+[[lights]]
+type = "spot"
+position = [0, 0, 3]
+direction = [0, 0, -1]
+angle = 30
+power = 10
+"#;
+
+/// The full error text (file:line:column, key, message) for KINDS with `from` replaced by `to`.
+fn kinds_error(from: &str, to: &str, sets: &[&str]) -> String {
+    assert!(KINDS.contains(from), "{from}");
+    fails(&KINDS.replacen(from, to, 1), sets).to_string()
+}
+
+/// Errors inside `[[lights]]`, `[[shapes]]` and `[materials.*]` keep the positions they had when
+/// those tables were flat serde structs (file:line:column and key, recorded on 420f0de); the
+/// messages after the key changed only where the rule did (per-kind keys, exact array lengths).
+#[test]
+fn kind_table_errors_keep_their_exact_positions() {
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "power = 10",
+            "power = \"x\"",
+            "21:9: key `lights.0.power`",
+            "invalid type",
+        ),
+        (
+            "size = [1, 1]",
+            "size = \"big\"",
+            "12:8: key `shapes.0.size`",
+            "invalid type",
+        ),
+        (
+            "size = [1, 1]",
+            "size = [1, 1]\ncolour = 1",
+            "13:1: key `shapes.0.colour`",
+            "unknown field `colour` for a quad shape",
+        ),
+        (
+            "albedo = 0.4",
+            "albedo = 0.4\nshine = 1",
+            "9:1: key `materials.wall.shine`",
+            "unknown field `shine` for a lambert material",
+        ),
+        (
+            "type = \"lambert\"",
+            "type = \"plastic\"",
+            "7:8: key `materials.wall.type`",
+            "unknown material type `plastic`",
+        ),
+        (
+            "type = \"spot\"\n",
+            "",
+            "16:1: key `lights.0`",
+            "missing field `type`",
+        ),
+        (
+            "translate = [0, 0, 1]",
+            "scale = \"x\"",
+            "14:23: key `shapes.0.transform.scale`",
+            "invalid type",
+        ),
+        (
+            "translate = [0, 0, 1]",
+            "foo = 1",
+            "14:15: key `shapes.0.transform.foo`",
+            "unknown field `foo`",
+        ),
+        (
+            "position = [0, 0, 3]",
+            "position = [0, 2]",
+            "18:12: key `lights.0.position`",
+            "invalid length 2",
+        ),
+        (
+            "albedo = 0.4",
+            "albedo = [1, 2]",
+            "8:10: key `materials.wall.albedo`",
+            "invalid length 2",
+        ),
+        (
+            "power = 10",
+            "power = -1",
+            "21:1: key `lights.0.power`",
+            "> 0",
+        ),
+        (
+            "position = [0, 0, 3]",
+            "position = [0, \"x\", 3]",
+            "18:16: key `lights.0.position.1`",
+            "invalid type",
+        ),
+        (
+            "angle = 30\n",
+            "",
+            "16:1: key `lights.0`",
+            "missing field `angle`",
+        ),
+        (
+            "albedo = 0.4",
+            "albedo = \"nosuch\"",
+            "8:1: key `materials.wall.albedo`",
+            "`nosuch` is not a spectrum",
+        ),
+        (
+            "type = \"quad\"",
+            "type = 3",
+            "11:8: key `shapes.0.type`",
+            "must be a string",
+        ),
+        (
+            "material = \"wall\"",
+            "material = 3",
+            "13:12: key `shapes.0.material`",
+            "invalid type",
+        ),
+        // Before, the third number was dropped without a word.
+        (
+            "size = [1, 1]",
+            "size = [1, 1, 1]",
+            "12:8: key `shapes.0.size`",
+            "invalid length 3, expected an array of 2 numbers",
+        ),
+    ];
+    for (from, to, at, message) in cases {
+        let e = kinds_error(from, to, &[]);
+        assert!(
+            e.starts_with(&format!("scenes/test.toml:{at}: ")),
+            "{to}: {e}"
+        );
+        assert!(e.contains(message), "{to}: {e}");
+    }
+}
+
+/// A key that belongs to another kind of light, shape or material is refused at its line,
+/// from the file and from `--set` (before, a point light's `direction` was silently ignored).
+#[test]
+fn keys_of_another_kind_are_refused() {
+    let e = kinds_error("type = \"spot\"", "type = \"point\"", &[]);
+    assert!(
+        e.starts_with("scenes/test.toml:19:1: key `lights.0.direction`: unknown field `direction` for a point light"),
+        "{e}"
+    );
+    let e = kinds_error("size = [1, 1]", "radius = 1", &[]);
+    assert!(
+        e.contains("12:1: key `shapes.0.radius`: unknown field `radius` for a quad"),
+        "{e}"
+    );
+    let e = kinds_error("albedo = 0.4", "albedo = 0.4\nroughness = 0.1", &[]);
+    assert!(e.contains("9:1: key `materials.wall.roughness`"), "{e}");
+    let e = fails(KINDS, &["lights.0.radius=0.01"]).to_string();
+    assert!(
+        e.starts_with("--set lights.0.radius=0.01: key `lights.0.radius`: unknown field `radius` for a spot light"),
+        "{e}"
+    );
+    // Changing the kind from the command line checks the other keys against the new kind.
+    let e = fails(KINDS, &["lights.0.type=laser"]).to_string();
+    assert!(
+        e.starts_with("--set lights.0.type=laser: key `lights.0"),
+        "{e}"
+    );
+}
+
+/// The documented minimum roughness is accepted although 1e-4 is not exactly an f32.
+#[test]
+fn roughness_bounds_are_compared_as_stored() {
+    let glossy = GOOD.replace("type = \"lambert\"", "type = \"glossy\"");
+    let ok = glossy.replace("albedo = 0.4", "albedo = 0.4\nroughness = 0.0001");
+    load_str(&ok, Path::new("scenes/test.toml"), &[])
+        .expect("roughness 1e-4 is the documented minimum");
+    let e = fails(
+        &glossy.replace("albedo = 0.4", "albedo = 0.4\nroughness = 0.00009"),
+        &[],
+    );
+    assert_at(&e, 12, "materials.wall.roughness");
+    assert!(e.to_string().contains("[1e-4, 1]"), "{e}");
+}
+
+/// An albedo above 1 (energy gain) is refused, as a number, an RGB triple, or a named spectrum
+/// once resolved, unless the material allows it.
+#[test]
+fn albedo_above_one_is_refused_unless_allowed() {
+    let e = fails(&GOOD.replace("albedo = 0.4", "albedo = 1.5"), &[]);
+    assert_at(&e, 11, "materials.wall.albedo");
+    assert!(e.to_string().contains("allow_energy_gain"), "{e}");
+    let e = fails(
+        &GOOD.replace("albedo = 0.4", "albedo = [1.2, 0.5, 0.5]"),
+        &[],
+    );
+    assert_at(&e, 11, "materials.wall.albedo");
+
+    let allowed = GOOD.replace("albedo = 0.4", "albedo = 1.5\nallow_energy_gain = true");
+    let s = load_str(&allowed, Path::new("scenes/test.toml"), &[]).expect("allowed gain");
+    brume::scene::build(&s).expect("builds");
+    let rgb = GOOD.replace(
+        "albedo = 0.4",
+        "albedo = [1.2, 0.6, 0.6]\nallow_energy_gain = true",
+    );
+    let s = load_str(&rgb, Path::new("scenes/test.toml"), &[]).expect("allowed gain");
+    let built = brume::scene::build(&s).expect("builds");
+    let brume::material::Material::Lambert { albedo } = &built.materials[0] else {
+        panic!("lambert")
+    };
+    let max = albedo.at(glam::Vec2::ZERO).max_value();
+    assert!(max > 1.1, "an allowed RGB above 1 keeps its scale: {max}");
+
+    // A named spectrum is only known once resolved: refused when the scene is built, at the
+    // material's albedo key and line.
+    let named = format!(
+        "{}\n[spectra.hot]\nvalue = 1.5\n",
+        GOOD.replace("albedo = 0.4", "albedo = \"hot\"")
+    );
+    let s = load_str(&named, Path::new("scenes/test.toml"), &[]).expect("loads");
+    let e = brume::scene::build(&s).err().expect("refused when built");
+    assert_at(&e, 11, "materials.wall.albedo");
+    let e = fails(GOOD, &["materials.wall.albedo=2"]);
+    assert!(
+        e.to_string().starts_with("--set materials.wall.albedo=2: "),
+        "{e}"
+    );
+}
+
+#[test]
+fn camera_up_along_the_view_is_refused() {
+    let text = GOOD.replace(
+        "height = 48",
+        "height = 48\nposition = [0, 0, 5]\nup = [0, 0, 2]",
+    );
+    let e = fails(&text, &[]);
+    assert_at(&e, 6, "camera.up");
+    assert!(
+        e.to_string().contains("parallel to the view direction"),
+        "{e}"
+    );
+    let e = fails(GOOD, &["camera.up=[0, 0, -1]"]);
+    assert_eq!(e.key(), Some("camera.up"), "{e}");
+    // A perspective camera has no viewed rectangle, an orthographic one no field of view.
+    let e = fails(GOOD, &["camera.view_width=2"]);
+    assert_eq!(e.key(), Some("camera.view_width"), "{e}");
+    let e = fails(GOOD, &["camera.type=orthographic", "camera.fov=30"]);
+    assert_eq!(e.key(), Some("camera.fov"), "{e}");
+}
+
+/// Lights far beyond any real source are refused with the bound (a 1e30 W lamp rendered black:
+/// its splats overflow the film; see tests/reliability_limits.rs for the render).
+#[test]
+fn absurd_light_power_is_refused() {
+    let e = kinds_error("power = 10", "power = 1e30", &[]);
+    assert!(
+        e.starts_with("scenes/test.toml:21:1: key `lights.0.power`: "),
+        "{e}"
+    );
+    assert!(e.contains("1e9 W"), "{e}");
+    let directional = KINDS.replace(
+        "type = \"spot\"\nposition = [0, 0, 3]\ndirection = [0, 0, -1]\nangle = 30\npower = 10",
+        "type = \"directional\"\ndirection = [0, 0, -1]\nirradiance = 1e7",
+    );
+    let e = fails(&directional, &[]).to_string();
+    assert!(
+        e.contains("key `lights.0.irradiance`") && e.contains("1e6"),
+        "{e}"
+    );
+    let emitter = KINDS.replace("material = \"wall\"", "emit = 1e5\nemit_scale = 1e4");
+    let s = load_str(&emitter, Path::new("scenes/test.toml"), &[]).expect("loads");
+    let e = brume::scene::build(&s)
+        .err()
+        .expect("too bright")
+        .to_string();
+    assert!(
+        e.contains("13:1: key `shapes.0.emit`") && e.contains("1e8"),
+        "{e}"
+    );
+}
+
+fn warnings_of(text: &str, sets: &[&str]) -> Vec<String> {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let s = load_str(text, Path::new("scenes/test.toml"), &sets).expect("loads");
+    let (_, warnings) = brume::scene::build_with_warnings(&s).expect("builds");
+    warnings.iter().map(|w| w.to_string()).collect()
+}
+
+#[test]
+fn a_scene_without_light_or_with_a_huge_radius_is_warned() {
+    assert!(
+        warnings_of(KINDS, &[]).is_empty(),
+        "a sane scene has no warnings"
+    );
+    let w = warnings_of(GOOD, &[]);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("no light that emits"), "{w:?}");
+    // A radius of 10 m on a 1.4 m scene (the audit's image was 250x too dark).
+    let w = warnings_of(
+        &KINDS.replace("[camera]", "[integrator]\nradius = 10\n\n[camera]"),
+        &[],
+    );
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].starts_with("scenes/test.toml:3:1: key `integrator.radius`: 10 m is"),
+        "{w:?}"
+    );
+    let w = warnings_of(KINDS, &["integrator.radius=0.5"]);
+    assert!(w[0].starts_with("--set integrator.radius=0.5: "), "{w:?}");
+    // 5 % of the diagonal is the bound.
+    assert!(warnings_of(KINDS, &["integrator.radius=0.07"]).is_empty());
+}
+
+/// The documentation's `--set` example runs on the scene it names.
+#[test]
+fn the_documented_set_example_works() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fog-room-laser.toml");
+    let s = load(&scene, &["shapes.1.material=wall".into()]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.desc.shapes[1].common.material.as_deref(), Some("wall"));
+}
+
+#[test]
+fn blends_name_existing_materials_without_containing_themselves() {
+    let blend = |first: &str, second: &str, weight: &str| {
+        format!(
+            "{GOOD}\n[materials.coat]\ntype = \"glossy\"\nalbedo = 0.3\n\n\
+             [materials.mix]\ntype = \"blend\"\nfirst = \"{first}\"\nsecond = \"{second}\"\nweight = {weight}\n"
+        )
+    };
+    let s = load_str(
+        &blend("wall", "coat", "0.25"),
+        Path::new("scenes/test.toml"),
+        &[],
+    )
+    .expect("a blend of two materials");
+    let built = brume::scene::build(&s).expect("builds");
+    assert!(matches!(
+        built.materials[1],
+        brume::material::Material::Blend(_)
+    ));
+    let e = fails(&blend("wall", "stone", "0.25"), &[]);
+    assert_at(&e, 25, "materials.mix.second");
+    let e = fails(&blend("wall", "coat", "1.5"), &[]);
+    assert_at(&e, 26, "materials.mix.weight");
+    let e = fails(&blend("wall", "mix", "0.5"), &[]);
+    assert_eq!(e.key(), Some("materials.mix"), "{e}");
+    assert!(e.to_string().contains("mix -> mix"), "{e}");
+}

@@ -80,7 +80,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
 
     let start = Instant::now();
     let (film, interrupted) = pool.install(|| -> anyhow::Result<(Film, bool)> {
-        let scene = brume::scene::build(&loaded)?;
+        let (scene, warnings) = brume::scene::build_with_warnings(&loaded)?;
+        for w in &warnings {
+            eprintln!("brume: warning: {w}");
+        }
         let integrator = brume::scene::build_integrator(&loaded, &scene)?;
         let mut renderer = match (resumed, range) {
             (Some(r), _) => {

@@ -10,6 +10,10 @@ use super::Albedo;
 use super::fresnel::{reflect, schlick};
 use crate::spectrum::Spectrum;
 
+/// Smallest GGX alpha: a near-mirror coat. f32 still resolves its lobe (D peaks at 1/(pi a^2),
+/// about 3e7), and the scene format documents this bound.
+pub const MIN_ROUGHNESS: f32 = 1e-4;
+
 #[derive(Clone, Debug)]
 pub struct Glossy {
     pub albedo: Albedo,
@@ -26,7 +30,7 @@ impl Glossy {
         Glossy {
             albedo,
             r0: (r * r).clamp(0.0, 1.0),
-            alpha: roughness.clamp(1e-3, 1.0),
+            alpha: roughness.clamp(MIN_ROUGHNESS, 1.0),
             n_bins: n_bins.clamp(1, crate::spectrum::MAX_BINS),
         }
     }

@@ -4,6 +4,7 @@
 //! Reflective materials are two-sided: they reflect on whichever side `wo` is, and only into that
 //! side (judged by the geometric normal, so shading normals cannot leak light through).
 
+mod blend;
 mod dielectric;
 mod fresnel;
 mod glossy;
@@ -18,10 +19,11 @@ use crate::geometry::Hit;
 use crate::geometry::sampling::{Frame, cosine_hemisphere};
 use crate::spectrum::Spectrum;
 
+pub use blend::{Blend, BlendWeight};
 pub use dielectric::Dielectric;
 pub use fresnel::{fresnel_dielectric, reflect, refract, schlick};
-pub use glossy::Glossy;
-pub use texture::{Texture, TextureError};
+pub use glossy::{Glossy, MIN_ROUGHNESS};
+pub use texture::{Encoding, Texture, TextureError, Wrap};
 
 /// Which lobe produced a sample; the integrator gathers only at diffuse events.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,10 +76,16 @@ impl From<Arc<Texture>> for Albedo {
 
 #[derive(Clone, Debug)]
 pub enum Material {
-    Lambert { albedo: Albedo },
-    Mirror { reflectance: Spectrum },
+    Lambert {
+        albedo: Albedo,
+    },
+    Mirror {
+        reflectance: Spectrum,
+    },
     Glossy(Glossy),
     Dielectric(Dielectric),
+    /// (1 - w) first + w second.
+    Blend(Box<Blend>),
 }
 
 /// Local frame on `wo`'s side of the surface, or None if `wo` lies in the surface.
@@ -119,7 +127,7 @@ impl Material {
     }
 
     /// `specular_ior` sets the coating's normal-incidence reflectance; `roughness` is the GGX
-    /// alpha (clamped to [1e-3, 1]); `n_bins` is the scene's bin count (the achromatic coating
+    /// alpha (clamped to [`MIN_ROUGHNESS`, 1]); `n_bins` is the scene's bin count (the achromatic coating
     /// fills exactly these lanes).
     pub fn glossy(
         albedo: impl Into<Albedo>,
@@ -135,13 +143,39 @@ impl Material {
         Material::Dielectric(Dielectric::new(ior, n_bins))
     }
 
+    /// `(1 - weight) first + weight second`; `weight` is clamped to [0, 1] where it is used.
+    pub fn blend(first: Material, second: Material, weight: BlendWeight) -> Material {
+        Material::Blend(Box::new(Blend {
+            first,
+            second,
+            weight,
+        }))
+    }
+
     pub fn is_dispersive(&self) -> bool {
-        matches!(self, Material::Dielectric(d) if d.dispersive)
+        match self {
+            Material::Dielectric(d) => d.dispersive,
+            Material::Blend(b) => b.first.is_dispersive() || b.second.is_dispersive(),
+            Material::Lambert { .. } | Material::Mirror { .. } | Material::Glossy(_) => false,
+        }
     }
 
     /// Has the material a delta (specular) part only?
     pub fn is_specular(&self) -> bool {
-        matches!(self, Material::Mirror { .. } | Material::Dielectric(_))
+        match self {
+            Material::Mirror { .. } | Material::Dielectric(_) => true,
+            Material::Blend(b) => b.first.is_specular() && b.second.is_specular(),
+            Material::Lambert { .. } | Material::Glossy(_) => false,
+        }
+    }
+
+    /// Has the material a part that [`Self::sample_nondiffuse`] samples?
+    pub fn has_nondiffuse(&self) -> bool {
+        match self {
+            Material::Lambert { .. } => false,
+            Material::Mirror { .. } | Material::Glossy(_) | Material::Dielectric(_) => true,
+            Material::Blend(b) => b.first.has_nondiffuse() || b.second.has_nondiffuse(),
+        }
     }
 
     /// Full BSDF value f (no cosine). Zero for delta lobes.
@@ -158,24 +192,24 @@ impl Material {
                 }
             }
             Material::Mirror { .. } | Material::Dielectric(_) => Spectrum::ZERO,
+            Material::Blend(b) => b.eval(wo, wi, hit),
         }
     }
 
     /// Density (solid angle) with which [`Self::sample`] returns `wi`; zero for delta lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> f32 {
-        let Some(f) = side_frame(wo, hit) else {
-            return 0.0;
-        };
-        let Some((lo, li)) = reflects(wo, wi, hit, &f) else {
-            return 0.0;
+        let local = || {
+            let f = side_frame(wo, hit)?;
+            reflects(wo, wi, hit, &f)
         };
         match self {
-            Material::Lambert { .. } => li.z * FRAC_1_PI,
-            Material::Glossy(g) => {
+            Material::Lambert { .. } => local().map_or(0.0, |(_, li)| li.z * FRAC_1_PI),
+            Material::Glossy(g) => local().map_or(0.0, |(lo, li)| {
                 let pd = g.diffuse_probability(lo.z, hit.uv);
                 pd * li.z * FRAC_1_PI + (1.0 - pd) * g.pdf_specular(lo, li)
-            }
+            }),
             Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
+            Material::Blend(b) => b.pdf(wo, wi, hit),
         }
     }
 
@@ -217,7 +251,7 @@ impl Material {
                 }
                 let weight = match kind {
                     LobeKind::Diffuse => g.f_diffuse(lo, li, hit.uv) * (std::f32::consts::PI / pd),
-                    _ => {
+                    LobeKind::Glossy | LobeKind::Specular => {
                         let p = (1.0 - pd) * g.pdf_specular(lo, li);
                         if p <= 0.0 {
                             return None;
@@ -234,6 +268,7 @@ impl Material {
             }
             Material::Mirror { .. } => self.sample_nondiffuse(wo, hit, u),
             Material::Dielectric(d) => d.sample(wo, hit, u, false),
+            Material::Blend(b) => b.sample(wo, hit, u),
         }
     }
 
@@ -246,25 +281,27 @@ impl Material {
                 None => 0.0,
             },
             Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
+            Material::Blend(b) => b.diffuse_probability(wo, hit),
         }
     }
 
     /// f of the diffuse part only (no cosine).
     pub fn eval_diffuse(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> Spectrum {
-        let diffuse = matches!(self, Material::Lambert { .. } | Material::Glossy(_));
-        if !diffuse {
-            return Spectrum::ZERO;
-        }
-        let Some(f) = side_frame(wo, hit) else {
-            return Spectrum::ZERO;
-        };
-        let Some((lo, li)) = reflects(wo, wi, hit, &f) else {
-            return Spectrum::ZERO;
+        let diffuse = |wo, wi| {
+            let f = side_frame(wo, hit)?;
+            reflects(wo, wi, hit, &f)
         };
         match self {
-            Material::Lambert { albedo } => albedo.at(hit.uv) * FRAC_1_PI,
-            Material::Glossy(g) => g.f_diffuse(lo, li, hit.uv),
-            _ => Spectrum::ZERO,
+            Material::Lambert { albedo } => match diffuse(wo, wi) {
+                Some(_) => albedo.at(hit.uv) * FRAC_1_PI,
+                None => Spectrum::ZERO,
+            },
+            Material::Glossy(g) => match diffuse(wo, wi) {
+                Some((lo, li)) => g.f_diffuse(lo, li, hit.uv),
+                None => Spectrum::ZERO,
+            },
+            Material::Mirror { .. } | Material::Dielectric(_) => Spectrum::ZERO,
+            Material::Blend(b) => b.eval_diffuse(wo, wi, hit),
         }
     }
 
@@ -308,6 +345,7 @@ impl Material {
                 })
             }
             Material::Dielectric(d) => d.sample(wo, hit, u, true),
+            Material::Blend(b) => b.sample_nondiffuse(wo, hit, u),
         }
     }
 }

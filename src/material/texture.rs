@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec2;
+use serde::{Deserialize, Serialize};
 
 use crate::spectrum::{MAX_BINS, Spectrum};
 
@@ -14,14 +15,53 @@ pub enum TextureError {
     Format { path: PathBuf },
 }
 
-/// Spectral texture: `n` bins per texel, row 0 at the top of the image. Lookups are bilinear
-/// with repeat wrapping; v = 0 is the bottom row (the OBJ / OpenGL convention).
+/// How a texture's stored values are decoded to linear RGB (`colour_space` in a scene).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Encoding {
+    /// The sRGB transfer curve (IEC 61966-2-1): 8-bit colour images.
+    Srgb,
+    /// Stored values are linear already: EXR files, data such as masks.
+    Linear,
+}
+
+impl Encoding {
+    /// The convention of a file type: EXR stores linear values, other images sRGB-encoded ones.
+    pub fn default_for(path: &Path) -> Encoding {
+        match lower_extension(path).as_deref() {
+            Some("exr") => Encoding::Linear,
+            _ => Encoding::Srgb,
+        }
+    }
+
+    fn decode(self, c: f32) -> f32 {
+        match self {
+            Encoding::Srgb => srgb_to_linear(c),
+            Encoding::Linear => c,
+        }
+    }
+}
+
+/// What a lookup outside [0, 1] sees (`wrap` in a scene).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Wrap {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The edge texels extend outwards.
+    Clamp,
+}
+
+/// Spectral texture: `n` bins per texel, row 0 at the top of the image. Lookups are bilinear;
+/// v = 0 is the bottom row (the OBJ / OpenGL convention).
 #[derive(Clone, Debug)]
 pub struct Texture {
     width: usize,
     height: usize,
     n: usize,
     data: Vec<f32>,
+    wrap: Wrap,
 }
 
 impl Texture {
@@ -44,7 +84,14 @@ impl Texture {
             height: height.max(1),
             n,
             data,
+            wrap: Wrap::Repeat,
         }
+    }
+
+    /// The same texels, looked up with `wrap` outside [0, 1].
+    pub fn with_wrap(mut self, wrap: Wrap) -> Texture {
+        self.wrap = wrap;
+        self
     }
 
     /// Loads a PNG (sRGB-encoded: decoded to linear) or an EXR (linear) file.
@@ -53,15 +100,22 @@ impl Texture {
         n_bins: usize,
         to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
     ) -> Result<Texture, TextureError> {
+        Self::load_encoded(path, Encoding::default_for(path), n_bins, to_spectrum)
+    }
+
+    /// Loads a PNG or EXR file whose values are decoded from `encoding` to linear RGB before
+    /// `to_spectrum` upsamples them.
+    pub fn load_encoded(
+        path: &Path,
+        encoding: Encoding,
+        n_bins: usize,
+        to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
+    ) -> Result<Texture, TextureError> {
         let read_err = |message: String| TextureError::Read {
             path: path.to_path_buf(),
             message,
         };
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase());
-        let (w, h, rgb) = match ext.as_deref() {
+        let (w, h, rgb) = match lower_extension(path).as_deref() {
             Some("png") => {
                 let img = image::ImageReader::open(path)
                     .map_err(|e| read_err(e.to_string()))?
@@ -69,7 +123,10 @@ impl Texture {
                     .map_err(|e| read_err(e.to_string()))?
                     .to_rgb32f();
                 let (w, h) = (img.width() as usize, img.height() as usize);
-                let rgb = img.pixels().map(|p| p.0.map(srgb_to_linear)).collect();
+                let rgb = img
+                    .pixels()
+                    .map(|p| p.0.map(|c| encoding.decode(c)))
+                    .collect();
                 (w, h, rgb)
             }
             Some("exr") => {
@@ -84,7 +141,12 @@ impl Texture {
                 )
                 .map_err(|e| read_err(e.to_string()))?;
                 let size = img.layer_data.size;
-                let (_, px) = img.layer_data.channel_data.pixels;
+                let (_, mut px) = img.layer_data.channel_data.pixels;
+                if encoding != Encoding::Linear {
+                    for p in &mut px {
+                        *p = p.map(|c| encoding.decode(c));
+                    }
+                }
                 (size.width(), size.height(), px)
             }
             _ => {
@@ -103,18 +165,35 @@ impl Texture {
         (self.width, self.height)
     }
 
+    pub fn wrap(&self) -> Wrap {
+        self.wrap
+    }
+
+    /// Largest and smallest value of any texel in any of its bins.
+    pub fn value_range(&self) -> (f32, f32) {
+        self.data
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            })
+    }
+
     fn texel(&self, x: usize, y: usize) -> &[f32] {
         let i = (y * self.width + x) * self.n;
         &self.data[i..i + self.n]
     }
 
-    /// Bilinear lookup with repeat wrap.
+    /// Bilinear lookup, wrapping outside [0, 1] as the texture's [`Wrap`] says.
     pub fn lookup(&self, uv: Vec2) -> Spectrum {
         let fx = uv.x * self.width as f32 - 0.5;
         let fy = (1.0 - uv.y) * self.height as f32 - 0.5;
         let (x0, y0) = (fx.floor(), fy.floor());
         let (tx, ty) = (fx - x0, fy - y0);
-        let wrap = |i: f32, n: usize| (i as i64).rem_euclid(n as i64) as usize;
+        let mode = self.wrap;
+        let wrap = |i: f32, n: usize| match mode {
+            Wrap::Repeat => (i as i64).rem_euclid(n as i64) as usize,
+            Wrap::Clamp => (i as i64).clamp(0, n as i64 - 1) as usize,
+        };
         let (xa, xb) = (wrap(x0, self.width), wrap(x0 + 1.0, self.width));
         let (ya, yb) = (wrap(y0, self.height), wrap(y0 + 1.0, self.height));
         let mut s = Spectrum::ZERO;
@@ -131,6 +210,12 @@ impl Texture {
         }
         s
     }
+}
+
+fn lower_extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
 }
 
 fn srgb_to_linear(c: f32) -> f32 {

@@ -1,179 +1,140 @@
-//! From a validated description to the runtime scene the integrator traces.
+//! From a validated description to the runtime scene the integrator traces. Each kind of
+//! light, shape and material builds itself (see `lights/`, `shapes/`, `materials/`); this file
+//! holds the loops, the media and what depends on the whole scene (medium ids, world box).
 
 use std::collections::BTreeMap;
-use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
-use super::LoadedScene;
-use super::desc::{LightKind, MaterialKind, ShapeKindDesc, SpectrumRef};
-use super::error::{KeyText, Origin, SceneError};
-use super::spectra::SpectrumResolver;
+use super::builder::{Builder, Inputs};
+use super::desc::{MediumDesc, ShapeDesc, SpectrumRef};
+use super::error::{SceneError, SceneWarning};
+use super::loaded::LoadedScene;
+use super::materials;
 use crate::camera::Camera;
-use crate::geometry::{self, Geometry, ShapeKind, Transform};
+use crate::geometry::Geometry;
 use crate::integrator::Integrator;
 use crate::light::{Light, LightSet};
-use crate::material::{Albedo, Material, Texture};
+use crate::material::Material;
 use crate::medium::HomogeneousMedium;
-use crate::scene::desc::Projection;
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
-fn err(scene: &LoadedScene, key: String, message: String) -> SceneError {
-    SceneError::Invalid {
-        origin: Origin::File {
-            file: scene.file.clone(),
-            line: None,
-        },
-        key: KeyText(key),
-        message,
-    }
-}
+/// An integration radius above this fraction of the scene's bounding-box diagonal draws a
+/// warning: such volumes blur the image and straddle surfaces (light is lost beyond them).
+/// The shipped scenes use 0.5 % or less.
+pub const LARGE_RADIUS: f32 = 0.05;
 
-fn v3(a: [f32; 3]) -> Vec3 {
-    Vec3::from_array(a)
-}
-
+/// The runtime scene of a loaded scene file (its warnings dropped: see
+/// [`build_with_warnings`]).
 pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
+    build_with_warnings(scene).map(|(s, _)| s)
+}
+
+/// The runtime scene and what in it is allowed but probably not meant (no light, a radius as
+/// large as the scene): the command line prints those before rendering.
+pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarning>), SceneError> {
     let d = &scene.desc;
     let grid = d.film.grid();
-    let n = grid.n;
-    let spectra = SpectrumResolver::new(scene, grid);
-
+    let b = Builder::new(
+        scene.source(),
+        Inputs {
+            grid,
+            spectra: &d.spectra,
+            materials: d.materials.keys().map(String::as_str).collect(),
+            media: d.media.keys().map(String::as_str).collect(),
+            outside: d.medium.as_deref(),
+            radius: d.integrator.radius,
+        },
+    );
     // Resolve every named spectrum once, so that a bad file is reported even if unused.
     for name in d.spectra.keys() {
-        spectra.unbounded(
+        b.spectra.unbounded(
             &SpectrumRef::Named(name.clone()),
             &format!("spectra.{name}"),
         )?;
     }
-    let media_ids: BTreeMap<&str, u32> = d
-        .media
-        .keys()
-        .enumerate()
-        .map(|(i, k)| (k.as_str(), i as u32))
+    let media = build_media(&b, &d.media)?;
+    let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
+    let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
+    let open = open_media(&geometry, media.len(), b.outside_medium());
+    let mut lights: Vec<Light> = area_lights
+        .into_iter()
+        .map(|(shape, radiance)| Light::area(shape, radiance, false))
         .collect();
-    let media = d
-        .media
+    for (i, l) in d.lights.iter().enumerate() {
+        lights.push(l.build(&b, &format!("lights.{i}"))?);
+    }
+    let lights = LightSet::new(lights, &geometry);
+    let camera = d.camera.build();
+    let (world_min, world_max) = world_box(&geometry, &camera, d.integrator.radius);
+    let warnings = warnings(scene, &geometry, &lights);
+    let outside = b.outside_medium();
+    let mut built = Scene {
+        grid,
+        camera,
+        geometry,
+        materials,
+        media,
+        lights,
+        camera_medium: outside,
+        open_media: open.iter().any(|&o| o),
+        open,
+        outside_medium: outside,
+        world_min,
+        world_max,
+    };
+    built.camera_medium = built.medium_at(camera.position());
+    Ok((built, warnings))
+}
+
+/// The integrator the scene file's `[integrator]` table describes, for its built `scene`.
+pub fn build_integrator(loaded: &LoadedScene, scene: &Scene) -> Result<Integrator, SceneError> {
+    Integrator::from_desc(&loaded.desc.integrator, scene)
+        .map_err(|e| loaded.source().invalid("integrator.q", e.to_string()))
+}
+
+// Media are built as before (their description is being reworked separately).
+fn build_media(
+    b: &Builder,
+    media: &BTreeMap<String, MediumDesc>,
+) -> Result<Vec<HomogeneousMedium>, SceneError> {
+    media
         .iter()
         .map(|(name, m)| {
             let key = format!("media.{name}");
-            let ss = spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
-            let sa = spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
-            HomogeneousMedium::new(&ss, &sa, m.g, n)
-                .map_err(|e| err(scene, key.clone(), e.to_string()))
+            let ss = b.spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
+            let sa = b.spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
+            HomogeneousMedium::new(&ss, &sa, m.g, b.grid.n)
+                .map_err(|e| b.source.invalid(&key, e.to_string()))
         })
-        .collect::<Result<Vec<_>, SceneError>>()?;
+        .collect()
+}
 
-    let material_ids: BTreeMap<&str, u32> = d
-        .materials
-        .keys()
-        .enumerate()
-        .map(|(i, k)| (k.as_str(), i as u32))
-        .collect();
-    let materials = d
-        .materials
-        .iter()
-        .map(|(name, m)| {
-            let key = format!("materials.{name}");
-            let albedo = |what: &str| -> Result<Spectrum, SceneError> {
-                match &m.albedo {
-                    Some(a) => spectra.reflectance(a, &format!("{key}.{what}")),
-                    None => Ok(Spectrum::splat(1.0, n)),
-                }
-            };
-            // A texture multiplies the albedo: fold the albedo into each texel.
-            let albedo_value = albedo("albedo")?;
-            let texture = match &m.texture {
-                Some(t) => {
-                    let path = scene.resolve(t);
-                    // Surfaces a broken upsampling table as an error before texels are converted.
-                    spectra.reflectance(&SpectrumRef::Rgb([0.5; 3]), &format!("{key}.texture"))?;
-                    let convert = |rgb: [f32; 3]| spectra.rgb_reflectance(rgb) * albedo_value;
-                    let tex = Texture::load(&path, n, &convert)
-                        .map_err(|e| err(scene, format!("{key}.texture"), e.to_string()))?;
-                    Some(Arc::new(tex))
-                }
-                None => None,
-            };
-            let surface: Albedo = match texture {
-                Some(t) => t.into(),
-                None => albedo_value.into(),
-            };
-            let ior = match &m.ior {
-                Some(i) => spectra.unbounded(i, &format!("{key}.ior"))?,
-                None => Spectrum::splat(1.5, n),
-            };
-            Ok(match m.kind {
-                MaterialKind::Lambert => Material::Lambert { albedo: surface },
-                MaterialKind::Mirror => Material::mirror(albedo_value),
-                MaterialKind::Glossy => {
-                    Material::glossy(surface, ior[0], m.roughness.unwrap_or(0.1), n)
-                }
-                MaterialKind::Dielectric => Material::dielectric(ior, n),
-            })
-        })
-        .collect::<Result<Vec<_>, SceneError>>()?;
-
-    let outside = d.medium.as_deref().and_then(|m| media_ids.get(m).copied());
-    let mut shapes = Vec::with_capacity(d.shapes.len());
+/// The geometry, and the radiance of each emitting shape by shape id.
+fn build_shapes(
+    b: &Builder,
+    descs: &[ShapeDesc],
+) -> Result<(Geometry, Vec<(u32, Spectrum)>), SceneError> {
+    let mut shapes = Vec::with_capacity(descs.len());
     let mut area_lights = Vec::new();
-    for (i, s) in d.shapes.iter().enumerate() {
-        let key = format!("shapes.{i}");
-        let kind = match s.kind {
-            ShapeKindDesc::Quad => {
-                let v = s.size.clone().unwrap_or_default();
-                ShapeKind::Quad {
-                    size: Vec2::new(v[0], v[1]),
-                }
-            }
-            ShapeKindDesc::Box => {
-                let v = s.size.clone().unwrap_or_default();
-                ShapeKind::Box {
-                    size: Vec3::new(v[0], v[1], v[2]),
-                }
-            }
-            ShapeKindDesc::Sphere => ShapeKind::Sphere {
-                radius: s.radius.unwrap_or(1.0),
-            },
-            ShapeKindDesc::Disc => ShapeKind::Disc {
-                radius: s.radius.unwrap_or(1.0),
-            },
-            ShapeKindDesc::Mesh => {
-                let file = s.file.clone().unwrap_or_default();
-                geometry::load_obj(&scene.resolve(&file))
-                    .map_err(|e| err(scene, format!("{key}.file"), e.to_string()))?
-            }
-        };
-        let light = match &s.emit {
-            Some(e) => {
-                let radiance = spectra.emission(e, &format!("{key}.emit"))? * s.emit_scale;
-                area_lights.push((i as u32, radiance));
-                Some((area_lights.len() - 1) as u32)
-            }
-            None => None,
-        };
-        let t = &s.transform;
-        shapes.push(geometry::ShapeDesc {
-            kind,
-            transform: Transform::new(v3(t.translate), v3(t.rotate), v3(t.scale)),
-            material: s
-                .material
-                .as_deref()
-                .and_then(|m| material_ids.get(m).copied()),
-            interior: s
-                .interior
-                .as_deref()
-                .and_then(|m| media_ids.get(m).copied()),
-            exterior: match &s.exterior {
-                Some(m) => media_ids.get(m.as_str()).copied(),
-                None => outside,
-            },
-            light,
-        });
+    for (i, s) in descs.iter().enumerate() {
+        let (mut shape, radiance) = s.build(b, &format!("shapes.{i}"))?;
+        if let Some(radiance) = radiance {
+            area_lights.push((i as u32, radiance));
+            shape.light = Some((area_lights.len() - 1) as u32);
+        }
+        shapes.push(shape);
     }
-    let mut open = vec![true; media.len()];
-    for s in &shapes {
+    let geometry = Geometry::new(shapes).map_err(|e| b.source.invalid("shapes", e.to_string()))?;
+    Ok((geometry, area_lights))
+}
+
+/// Per medium: bounded only by index-matched (null) boundaries, so that its integration
+/// volumes may gather forward rays outside it (method note 8).
+fn open_media(geometry: &Geometry, media: usize, outside: Option<u32>) -> Vec<bool> {
+    let mut open = vec![true; media];
+    for s in geometry.shapes() {
         if s.material.is_some() {
             for m in [s.interior, s.exterior].into_iter().flatten() {
                 open[m as usize] = false;
@@ -184,97 +145,45 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         // A medium filling all space has no outside to gather from.
         open[m as usize] = false;
     }
-    let open_media = open.iter().any(|&o| o);
-    let geometry = Geometry::new(shapes).map_err(|e| err(scene, "shapes".into(), e.to_string()))?;
-
-    let mut lights: Vec<Light> = area_lights
-        .into_iter()
-        .map(|(shape, radiance)| Light::area(shape, radiance, false))
-        .collect();
-    for (i, l) in d.lights.iter().enumerate() {
-        let key = format!("lights.{i}");
-        let shape = match &l.spectrum {
-            Some(s) => spectra.emission(s, &format!("{key}.spectrum"))?,
-            None => spectra.emission(&SpectrumRef::Named("D65".into()), &key)?,
-        };
-        // Normalise the shape so that its integral over the spectral range is 1 (per nm).
-        let integral = shape.sum() as f64 * grid.width();
-        if integral <= 0.0 {
-            return Err(err(
-                scene,
-                format!("{key}.spectrum"),
-                "the spectrum is zero over the film's range".into(),
-            ));
-        }
-        let unit = shape * (1.0 / integral as f32);
-        let pos = l.position.map(v3).unwrap_or(Vec3::ZERO);
-        let dir = l
-            .direction
-            .map(|d| v3(d).normalize())
-            .unwrap_or(Vec3::NEG_Y);
-        let power = unit * l.power.unwrap_or(0.0);
-        lights.push(match l.kind {
-            LightKind::Directional => Light::directional(dir, unit * l.irradiance.unwrap_or(0.0))
-                .with_beam_margin(d.integrator.radius),
-            LightKind::Point => Light::point(pos, power),
-            LightKind::Spot => Light::spot(
-                pos,
-                dir,
-                power,
-                l.angle.unwrap_or(30.0),
-                l.soft_edge.unwrap_or(0.0),
-            ),
-            LightKind::Laser => Light::laser(pos, dir, l.radius.unwrap_or(1e-3), power),
-        });
-    }
-    let lights = LightSet::new(lights, &geometry);
-
-    let c = &d.camera;
-    let camera = match c.projection {
-        Projection::Orthographic => Camera::orthographic(
-            c.width,
-            c.height,
-            v3(c.position),
-            v3(c.look_at),
-            v3(c.up),
-            c.view_width,
-            c.view_height,
-        ),
-        Projection::Perspective => Camera::perspective(
-            c.width,
-            c.height,
-            v3(c.position),
-            v3(c.look_at),
-            v3(c.up),
-            c.fov,
-        ),
-    };
-    let b = geometry.bounds();
-    let (mut world_min, mut world_max) = (b.min.min(v3(c.position)), b.max.max(v3(c.position)));
-    let margin = (world_max - world_min).max_element().max(1e-3) * 0.05 + d.integrator.radius;
-    world_min -= Vec3::splat(margin);
-    world_max += Vec3::splat(margin);
-
-    let mut scene_out = Scene {
-        grid,
-        camera,
-        geometry,
-        materials,
-        media,
-        lights,
-        camera_medium: outside,
-        open,
-        open_media,
-        outside_medium: outside,
-        world_min,
-        world_max,
-    };
-    scene_out.camera_medium = scene_out.medium_at(v3(c.position));
-    Ok(scene_out)
+    open
 }
 
-/// The integrator the scene file's `[integrator]` table describes, for its built `scene`.
-pub fn build_integrator(loaded: &LoadedScene, scene: &Scene) -> Result<Integrator, SceneError> {
-    Integrator::from_desc(&loaded.desc.integrator, scene)
-        .map_err(|e| err(loaded, "integrator.q".into(), e.to_string()))
+/// The box paths end at: the geometry and the camera, grown by 5 % and the radius.
+fn world_box(geometry: &Geometry, camera: &Camera, radius: f32) -> (Vec3, Vec3) {
+    let b = geometry.bounds();
+    let eye = camera.position();
+    let (mut lo, mut hi) = (b.min.min(eye), b.max.max(eye));
+    let margin = (hi - lo).max_element().max(1e-3) * 0.05 + radius;
+    lo -= Vec3::splat(margin);
+    hi += Vec3::splat(margin);
+    (lo, hi)
+}
+
+/// Warnings that need the built scene: no light that emits, a radius as large as the scene.
+fn warnings(scene: &LoadedScene, geometry: &Geometry, lights: &LightSet) -> Vec<SceneWarning> {
+    let source = scene.source();
+    let mut w = Vec::new();
+    let emits = (0..lights.lights().len()).any(|i| lights.pick_probability(i) > 0.0);
+    if !emits {
+        w.push(source.warning(
+            "",
+            "the scene has no light that emits ([[lights]], or shapes with `emit`): the image \
+             will be black",
+        ));
+    }
+    let radius = scene.desc.integrator.radius;
+    let bounds = geometry.bounds();
+    let size = bounds.diagonal().length();
+    if !bounds.is_empty() && size > 0.0 && radius > LARGE_RADIUS * size {
+        w.push(source.warning(
+            "integrator.radius",
+            format!(
+                "{radius} m is {:.0} % of the scene's size ({size:.3} m across its bounds): \
+                 integration volumes this large blur the image and lose the light they reach \
+                 beyond surfaces; about 0.1-1 % of the scene is usual",
+                100.0 * radius / size
+            ),
+        ));
+    }
+    w
 }

@@ -27,6 +27,21 @@ pub enum SceneError {
     BadAssignment { assignment: String, message: String },
 }
 
+/// Something in a scene that is allowed but probably not what was meant, named like an error:
+/// file, line and key (or the `--set` responsible).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneWarning {
+    pub origin: Origin,
+    pub key: KeyText,
+    pub message: String,
+}
+
+impl fmt::Display for SceneWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}{}{}", self.origin, self.key, self.message)
+    }
+}
+
 /// A dotted key path shown in messages as "key `a.b`: "; empty at the top level.
 #[derive(Clone, Debug, PartialEq)]
 pub struct KeyText(pub String);

@@ -1,28 +1,13 @@
 //! Reading a scene file into a validated [`SceneDesc`], with `--set` overrides applied.
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use super::desc::SceneDesc;
+use super::desc::{self, SceneDesc};
 use super::error::{KeyText, Origin, SceneError};
+use super::loaded::LoadedScene;
 use super::path::{self, Seg};
 use super::validate;
-
-/// A scene description read from a file, overrides applied and validated.
-#[derive(Clone, Debug)]
-pub struct LoadedScene {
-    pub desc: SceneDesc,
-    /// The scene file.
-    pub file: PathBuf,
-    /// Folder that relative paths in the scene resolve from.
-    pub dir: PathBuf,
-}
-
-impl LoadedScene {
-    /// A path given in the scene, resolved against the scene file's folder.
-    pub fn resolve(&self, rel: &str) -> PathBuf {
-        self.dir.join(rel)
-    }
-}
 
 /// A `KEY=VALUE` override; VALUE is TOML (`0.1`, `"spheres"`, `[1, 2, 3]`), or a bare string.
 #[derive(Clone, Debug)]
@@ -89,7 +74,8 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
     let mut desc: SceneDesc = serde_path_to_error::deserialize(de).map_err(|e| {
         let key = clean_path(&e.path().to_string());
         let inner = e.into_inner();
-        in_file(key, inner.message().to_string(), inner.span())
+        let (key, message, span) = refine(text, key, inner.message().to_string(), inner.span());
+        in_file(key, message, span)
     })?;
 
     if !assignments.is_empty() {
@@ -104,22 +90,37 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
         desc,
         file: file.to_path_buf(),
         dir,
+        text: text.to_string(),
+        sets: assignments
+            .iter()
+            .map(|a| (a.text.clone(), path::display(&a.path)))
+            .collect(),
     };
     if let Some(problem) = validate::validate(&loaded).into_iter().next() {
-        let touched_by = assignments.iter().rev().find(|a| {
-            let a = path::display(&a.path);
-            problem.key == a || problem.key.starts_with(&format!("{a}."))
-        });
-        return Err(match touched_by {
-            Some(a) => SceneError::Invalid {
-                origin: Origin::Set(a.text.clone()),
-                key: KeyText(problem.key),
-                message: problem.message,
-            },
-            None => in_file(problem.key, problem.message, None),
-        });
+        return Err(loaded.source().invalid(&problem.key, problem.message));
     }
     Ok(loaded)
+}
+
+/// An error serde reports at a whole `[[lights]]`, `[[shapes]]` or `[materials.NAME]` table
+/// (their kinds are read by hand, see `tagged.rs`) is placed at its key by reading that table
+/// again from the document `text`.
+fn refine(
+    text: &str,
+    key: String,
+    message: String,
+    span: Option<Range<usize>>,
+) -> (String, String, Option<Range<usize>>) {
+    let segs = path::parse_path(&key);
+    let (Some(Seg::Key(section)), 2) = (segs.first(), segs.len()) else {
+        return (key, message, span);
+    };
+    let fault = path::value_at(text, &segs).and_then(|t| desc::read_kind_table(section, t));
+    match fault {
+        Some(f) if f.path.is_empty() => (key, f.message, None),
+        Some(f) => (format!("{key}.{}", f.path), f.message, f.span),
+        None => (key, message, span),
+    }
 }
 
 /// serde_path_to_error writes "?" for unknown positions and "." at the root.
@@ -152,6 +153,10 @@ fn apply_assignments(desc: SceneDesc, sets: &[Assignment]) -> Result<SceneDesc, 
         // Check each assignment on its own so the error names the one at fault.
         if let Err(e) = serde_path_to_error::deserialize::<_, SceneDesc>(root.clone()) {
             let key = clean_path(&e.path().to_string());
+            let message = e.into_inner().message().to_string();
+            // The overridden document as text, to place an error inside a kind's table.
+            let text = toml::to_string(&root).unwrap_or_default();
+            let (key, message, _) = refine(&text, key, message, None);
             return Err(SceneError::Invalid {
                 origin: Origin::Set(a.text.clone()),
                 key: KeyText(if key.is_empty() {
@@ -159,7 +164,7 @@ fn apply_assignments(desc: SceneDesc, sets: &[Assignment]) -> Result<SceneDesc, 
                 } else {
                     key
                 }),
-                message: e.into_inner().message().to_string(),
+                message,
             });
         }
     }

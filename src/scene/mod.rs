@@ -1,16 +1,35 @@
 //! Scenes: the TOML file format (`desc`), loading with `--set` overrides and exact error
 //! positions (`load`), validation (`validate`), and building the runtime scene (`build`).
+//!
+//! The camera and each kind of light, shape and material keep their keys, defaults, checks and
+//! runtime construction together (`camera.rs`, `lights/`, `shapes/`, `materials/`); `tagged.rs`
+//! reads tables whose `type` key picks the kind.
 
 mod build;
+mod builder;
+mod camera;
+mod check;
 pub mod desc;
 mod error;
+mod lights;
 mod load;
+mod loaded;
+mod materials;
 mod path;
+mod shapes;
+mod source;
 mod spectra;
 pub mod summary;
-pub mod validate;
+mod tagged;
+mod validate;
 
 pub use crate::world::Scene;
-pub use build::{build, build_integrator};
-pub use error::{Origin, SceneError};
-pub use load::{LoadedScene, load, load_str};
+pub use build::{LARGE_RADIUS, build, build_integrator, build_with_warnings};
+pub use camera::{MAX_PIXELS, MAX_SIDE};
+pub use check::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_SIDE};
+pub use error::{Origin, SceneError, SceneWarning};
+pub use lights::{MAX_IRRADIANCE, MAX_POWER};
+pub use load::{load, load_str};
+pub use loaded::LoadedScene;
+pub use shapes::MAX_RADIANCE;
+pub use source::Source;

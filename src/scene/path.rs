@@ -1,5 +1,6 @@
 //! Dotted key paths (`integrator.q`, `shapes.0.radius`) and their positions in a TOML text.
 
+use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -52,6 +53,25 @@ pub fn span_of(text: &str, path: &[Seg]) -> Option<std::ops::Range<usize>> {
         }
     }
     span
+}
+
+/// The value at `path` in the document, with its span.
+pub fn value_at<'a>(text: &'a str, path: &[Seg]) -> Option<Spanned<DeValue<'a>>> {
+    let root = DeTable::parse(text).ok()?;
+    let span = root.span();
+    let mut cur = Spanned::new(span, DeValue::Table(root.into_inner()));
+    for seg in path {
+        let next = match (seg, cur.into_inner()) {
+            (Seg::Key(k), DeValue::Table(t)) => t
+                .into_iter()
+                .find(|(key, _)| key.get_ref().as_ref() == k.as_str())
+                .map(|(_, v)| v),
+            (Seg::Index(i), DeValue::Array(a)) => a.into_iter().nth(*i),
+            _ => None,
+        };
+        cur = next?;
+    }
+    Some(cur)
 }
 
 /// 1-based line and column of a byte offset.

@@ -3,35 +3,33 @@
 
 use std::collections::BTreeMap;
 
-use super::LoadedScene;
-use super::desc::{RgbKind, SpectrumDesc, SpectrumRef};
-use super::error::{KeyText, Origin, SceneError};
+use super::desc::spectra::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::error::SceneError;
+use super::source::Source;
 use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
 
 pub struct SpectrumResolver<'a> {
-    scene: &'a LoadedScene,
+    source: Source<'a>,
     grid: SpectralGrid,
     named: &'a BTreeMap<String, SpectrumDesc>,
 }
 
 impl<'a> SpectrumResolver<'a> {
-    pub fn new(scene: &'a LoadedScene, grid: SpectralGrid) -> Self {
+    /// `named`: the scene's `[spectra]`.
+    pub fn new(
+        source: Source<'a>,
+        grid: SpectralGrid,
+        named: &'a BTreeMap<String, SpectrumDesc>,
+    ) -> Self {
         Self {
-            scene,
+            source,
             grid,
-            named: &scene.desc.spectra,
+            named,
         }
     }
 
     fn error(&self, key: &str, message: String) -> SceneError {
-        SceneError::Invalid {
-            origin: Origin::File {
-                file: self.scene.file.clone(),
-                line: None,
-            },
-            key: KeyText(key.to_string()),
-            message,
-        }
+        self.source.invalid(key, message)
     }
 
     /// A reference whose RGB form means `kind`.
@@ -62,7 +60,7 @@ impl<'a> SpectrumResolver<'a> {
         {
             spec.to_string()
         } else {
-            self.scene.resolve(spec).to_string_lossy().into_owned()
+            self.source.resolve(spec).to_string_lossy().into_owned()
         };
         let data = spectrum::resolve(&resolved, column, false)
             .map_err(|e| self.error(key, e.to_string()))?;

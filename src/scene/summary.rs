@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::LoadedScene;
+use super::loaded::LoadedScene;
 
 pub struct Summary {
     pub file: String,
@@ -36,8 +36,8 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
         materials: d.materials.len(),
         media: d.media.len(),
         spectra: d.spectra.len(),
-        volume: format!("{:?}", d.integrator.volume),
-        mode: format!("{:?}", d.integrator.mode),
+        volume: spelling(&d.integrator.volume),
+        mode: spelling(&d.integrator.mode),
         q: d.integrator.q,
         radius: d.integrator.radius,
         forward_rays: d.integrator.forward_rays,
@@ -47,6 +47,15 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
             d.film.bins,
             !d.media.is_empty(),
         ),
+    }
+}
+
+/// How a value is written in a scene file (serde's name for it), for unit enum variants.
+fn spelling<T: serde::Serialize + fmt::Debug>(v: &T) -> String {
+    match serde_json::to_value(v) {
+        Ok(serde_json::Value::String(s)) => s,
+        // Not a unit variant: no single word to show; Debug is the honest fallback.
+        _ => format!("{v:?}"),
     }
 }
 

@@ -1,27 +1,41 @@
 //! The scene file's typed description: what a TOML scene file (plus `--set` overrides) says,
-//! before anything is built. Every struct rejects unknown keys; defaults live here.
-//! docs/scene-format.md documents every field; keep the two in step.
+//! before anything is built. Every struct rejects unknown keys. The sections without kinds are
+//! described here; the camera and each kind of light, shape and material are described beside
+//! their checks and builders (`scene/camera.rs`, `scene/lights/`, `scene/shapes/`,
+//! `scene/materials/`) and re-exported here. docs/scene-format.md documents every field; keep
+//! the two in step.
 
-mod camera;
-mod film;
-mod lights;
-mod materials;
-mod media;
-mod shapes;
-mod spectra;
+// Leaf descriptions, which the kinds' modules use by these paths (not through this module,
+// which gathers the kinds: that would be an import cycle).
+pub(crate) mod array;
+pub(crate) mod film;
+pub(crate) mod media;
+pub(crate) mod spectra;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
+use toml::Spanned;
+use toml::de::DeValue;
 
+pub use super::camera::{CameraDesc, Projection};
+pub use super::lights::{
+    DirectionalDesc, LaserDesc, LightCommon, LightDesc, LightKind, PointDesc, SpotDesc,
+};
+pub use super::materials::{
+    BlendDesc, DielectricDesc, GlossyDesc, LambertDesc, MaterialCommon, MaterialDesc, MaterialKind,
+    MirrorDesc, TextureDesc, WeightDesc,
+};
+pub use super::shapes::{
+    BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
+    TransformDesc,
+};
 pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
-pub use camera::{CameraDesc, Projection};
 pub use film::FilmDesc;
-pub use lights::{LightDesc, LightKind};
-pub use materials::{MaterialDesc, MaterialKind};
 pub use media::MediumDesc;
-pub use shapes::{ShapeDesc, ShapeKindDesc, TransformDesc};
 pub use spectra::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
+
+use super::tagged::{self, Fault};
 
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -36,4 +50,16 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     /// Name of the medium filling all space outside every shape (none = vacuum).
     pub medium: Option<String>,
+}
+
+/// Why the table of `section` (`lights`, `shapes`, `materials`) cannot be read, with the key
+/// and span inside it; None for other sections or a table that reads.
+pub(crate) fn read_kind_table(section: &str, table: Spanned<DeValue<'_>>) -> Option<Fault> {
+    match section {
+        "lights" => tagged::read::<LightCommon, LightKind>(table).err(),
+        "shapes" => tagged::read::<ShapeCommon, ShapeKindDesc>(table).err(),
+        "materials" => tagged::read::<MaterialCommon, MaterialKind>(table).err(),
+        // The other sections are plain serde structs, placed by serde itself.
+        _ => None,
+    }
 }

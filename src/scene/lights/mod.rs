@@ -1,0 +1,99 @@
+//! `[[lights]]`: the keys every light shares (its spectrum) and the loops over kinds. Each
+//! kind's keys, defaults, checks and runtime [`Light`] are in its own file.
+
+mod directional;
+mod laser;
+mod point;
+mod spot;
+
+use serde::{Deserialize, Serialize};
+
+pub use directional::DirectionalDesc;
+pub use laser::LaserDesc;
+pub use point::PointDesc;
+pub use spot::SpotDesc;
+
+use super::builder::Builder;
+use super::check::Checker;
+use super::desc::spectra::SpectrumRef;
+use super::error::SceneError;
+use super::tagged::{Tagged, kinds};
+use crate::light::Light;
+
+/// Largest total power of a light, W. The film sums pass estimates in fixed point and drops a
+/// sample beyond `film::accum::MAX_SAMPLE` (1e11 per pixel and bin): a 1e30 W lamp renders
+/// black. 1e9 W (a million stadium floodlights) keeps a single forward ray's splat far inside
+/// that range at any sensible radius; larger sources are scaled-down scenes or the sun, which
+/// is a directional light.
+pub const MAX_POWER: f32 = 1e9;
+/// Largest irradiance of a directional light, W/m^2: about 700 suns.
+pub const MAX_IRRADIANCE: f32 = 1e6;
+
+/// Keys every light has.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightCommon {
+    /// Relative spectral shape, scaled so that its integral over the film's range is the
+    /// light's power (or irradiance). Default: the D65 illuminant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectrum: Option<SpectrumRef>,
+}
+
+kinds! {
+    /// The kinds of light, by their `type`.
+    pub enum LightKind: "light" {
+        "directional" => Directional(DirectionalDesc),
+        "point" => Point(PointDesc),
+        "spot" => Spot(SpotDesc),
+        "laser" => Laser(LaserDesc),
+    }
+}
+
+/// A `[[lights]]` table.
+pub type LightDesc = Tagged<LightCommon, LightKind>;
+
+impl LightDesc {
+    pub fn check(&self, c: &mut Checker, key: &str) {
+        if let Some(s) = &self.common.spectrum {
+            c.spectrum_ref(&format!("{key}.spectrum"), s);
+        }
+        match &self.kind {
+            LightKind::Directional(l) => l.check(c, key),
+            LightKind::Point(l) => l.check(c, key),
+            LightKind::Spot(l) => l.check(c, key),
+            LightKind::Laser(l) => l.check(c, key),
+        }
+    }
+
+    pub fn build(&self, b: &Builder, key: &str) -> Result<Light, SceneError> {
+        let spectrum_key = format!("{key}.spectrum");
+        let shape = match &self.common.spectrum {
+            Some(s) => b.spectra.emission(s, &spectrum_key)?,
+            None => b.spectra.emission(&SpectrumRef::Named("D65".into()), key)?,
+        };
+        // Normalise the shape so that its integral over the spectral range is 1 (per nm).
+        let integral = shape.sum() as f64 * b.grid.width();
+        if integral <= 0.0 {
+            let message = "the spectrum is zero over the film's range";
+            return Err(b.source.invalid(&spectrum_key, message));
+        }
+        let unit = shape * (1.0 / integral as f32);
+        Ok(match &self.kind {
+            LightKind::Directional(l) => l.build(unit, b.radius),
+            LightKind::Point(l) => l.build(unit),
+            LightKind::Spot(l) => l.build(unit),
+            LightKind::Laser(l) => l.build(unit),
+        })
+    }
+}
+
+/// The power of a point-like light: positive and at most [`MAX_POWER`].
+fn check_power(c: &mut Checker, key: &str, power: f32) {
+    c.bounded(
+        &format!("{key}.power"),
+        power,
+        MAX_POWER,
+        "W",
+        "accepted for a light (the film's sums would overflow)",
+    );
+}
