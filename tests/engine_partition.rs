@@ -121,4 +121,10 @@ fn fog_room_partition_with_and_without_laser() {
     check("fog-room-laser", "fog-room-laser.toml", &[]);
     // Without its laser (its power made negligible, so that it draws no forward rays).
     check("fog-room", "fog-room-laser.toml", &["lights.3.power=1e-12"]);
+    // One spot's direct light left with the forward rays (`direct = "photons"` on that light).
+    check(
+        "fog-room, mixed",
+        "fog-room-laser.toml",
+        &["lights.3.power=1e-12", "lights.0.direct=\"photons\""],
+    );
 }

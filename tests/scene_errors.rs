@@ -536,3 +536,34 @@ fn blends_name_existing_materials_without_containing_themselves() {
     assert_eq!(e.key(), Some("materials.mix"), "{e}");
     assert!(e.to_string().contains("mix -> mix"), "{e}");
 }
+
+/// `direct` (hybrid transport): a laser cannot take next-event estimation, and only emitting
+/// shapes have direct light; the other choices load.
+#[test]
+fn direct_choices_are_checked_per_light() {
+    let laser = KINDS.replacen(
+        "type = \"spot\"\nposition = [0, 0, 3]\ndirection = [0, 0, -1]\nangle = 30\npower = 10",
+        "type = \"laser\"\nposition = [0, 0, 3]\ndirection = [0, 0, -1]\nradius = 0.001\npower = 10\ndirect = \"nee\"",
+        1,
+    );
+    let e = fails(&laser, &[]).to_string();
+    assert!(
+        e.contains("key `lights.0.direct`: a laser's direct light cannot be reached"),
+        "{e}"
+    );
+    let e = kinds_error(
+        "material = \"wall\"",
+        "material = \"wall\"\ndirect = \"nee\"",
+        &[],
+    );
+    assert!(
+        e.contains("key `shapes.0.direct`: only an emitting shape"),
+        "{e}"
+    );
+    for ok in ["auto", "nee", "photons"] {
+        let set = format!("lights.0.direct=\"{ok}\"");
+        load_str(KINDS, Path::new("scenes/test.toml"), &[set]).expect("loads");
+    }
+    let e = fails(KINDS, &["lights.0.direct=\"sometimes\""]).to_string();
+    assert!(e.contains("lights.0.direct"), "{e}");
+}

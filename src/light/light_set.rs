@@ -1,10 +1,29 @@
+use serde::{Deserialize, Serialize};
+
 use super::{EmissionSample, Light};
 use crate::geometry::Geometry;
+
+/// How a light's direct light reaches the image when the integrator uses next-event estimation
+/// (`direct` of a light or an emitting shape).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DirectChoice {
+    /// Next-event estimation where it can reach the light (directional, point, spot and area
+    /// lights), except spots narrower than the integrator's threshold; forward rays otherwise.
+    #[default]
+    Auto,
+    /// Next-event estimation (not for lasers: no sampled direction can reach a beam).
+    Nee,
+    /// Forward rays only, as in the paper's pure method.
+    Photons,
+}
 
 /// All lights, picked for forward rays in proportion to their total power (summed over bins).
 #[derive(Clone, Debug)]
 pub struct LightSet {
     lights: Vec<Light>,
+    /// Per light: how its direct light is handled under next-event estimation.
+    direct: Vec<DirectChoice>,
     /// Cumulative pick probabilities.
     cdf: Vec<f32>,
     probs: Vec<f32>,
@@ -36,11 +55,30 @@ impl LightSet {
                 }
             })
             .collect();
-        LightSet { lights, cdf, probs }
+        let direct = vec![DirectChoice::Auto; lights.len()];
+        LightSet {
+            lights,
+            direct,
+            cdf,
+            probs,
+        }
     }
 
     pub fn lights(&self) -> &[Light] {
         &self.lights
+    }
+
+    /// Sets each light's direct-light choice (`choices` in the order of the lights).
+    pub fn with_direct(mut self, choices: Vec<DirectChoice>) -> Self {
+        if choices.len() == self.lights.len() {
+            self.direct = choices;
+        }
+        self
+    }
+
+    /// How light `i`'s direct light is handled under next-event estimation.
+    pub fn direct_choice(&self, i: usize) -> DirectChoice {
+        self.direct.get(i).copied().unwrap_or_default()
     }
 
     /// Probability that [`Self::sample`] picks light `i`.

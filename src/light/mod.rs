@@ -15,7 +15,7 @@ use crate::spectrum::Spectrum;
 use beam::Beam;
 
 pub use direct::{Anchor, Arrival};
-pub use light_set::LightSet;
+pub use light_set::{DirectChoice, LightSet};
 pub use spot::SpotProfile;
 
 /// A forward ray leaving a light and the spectral flux it carries (W/nm per bin), already divided

@@ -14,7 +14,7 @@ use super::materials;
 use crate::camera::Camera;
 use crate::geometry::Geometry;
 use crate::integrator::Integrator;
-use crate::light::{Light, LightSet};
+use crate::light::{DirectChoice, Light, LightSet};
 use crate::material::Material;
 use crate::medium::HomogeneousMedium;
 use crate::spectrum::Spectrum;
@@ -58,14 +58,20 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
     let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
     let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
+    // Area lights first (in shape order), then [[lights]]; each keeps its `direct` choice.
+    let mut direct: Vec<DirectChoice> = area_lights
+        .iter()
+        .map(|(shape, _)| d.shapes[*shape as usize].common.direct)
+        .collect();
     let mut lights: Vec<Light> = area_lights
         .into_iter()
         .map(|(shape, radiance)| Light::area(shape, radiance, false))
         .collect();
     for (i, l) in d.lights.iter().enumerate() {
         lights.push(l.build(&b, &format!("lights.{i}"))?);
+        direct.push(l.common.direct);
     }
-    let lights = LightSet::new(lights, &geometry);
+    let lights = LightSet::new(lights, &geometry).with_direct(direct);
     let camera = d.camera.build();
     let (world_min, world_max) = world_box(&geometry, &camera, d.integrator.radius);
     let warnings = warnings(scene, &geometry, &lights);

@@ -17,14 +17,15 @@ pub mod sampling;
 mod shadow;
 mod surface;
 
-use crate::light::Light;
+use crate::light::{DirectChoice, Light};
 use crate::world::Scene;
 
 use super::settings::{DirectMode, IntegratorDesc};
 
 /// Spot lights narrower than this half-angle (degrees) keep their direct light with the
-/// forward rays under `direct = "auto"`: a camera segment rarely meets so thin a cone, while
-/// forward rays concentrate in it (as for a laser).
+/// forward rays under a light's `direct = "auto"`: a camera segment rarely meets so thin a
+/// cone, while forward rays concentrate in it (as for a laser). A light's `direct = "nee"` or
+/// `"photons"` overrides the rule.
 pub const NARROW_SPOT_DEGREES: f32 = 1.0;
 
 /// Which lights next-event estimation handles and how it picks among them.
@@ -46,7 +47,15 @@ impl Direct {
             DirectMode::Nee => {}
         }
         let lights = scene.lights.lights();
-        let nee: Vec<bool> = lights.iter().map(auto_nee).collect();
+        let nee: Vec<bool> = lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| match scene.lights.direct_choice(i) {
+                DirectChoice::Auto => auto_nee(l),
+                DirectChoice::Nee => l.nee_capable(),
+                DirectChoice::Photons => false,
+            })
+            .collect();
         let weights: Vec<f64> = lights
             .iter()
             .zip(&nee)

@@ -18,7 +18,7 @@ use super::check::Checker;
 use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
 use super::tagged::{Tagged, kinds};
-use crate::light::Light;
+use crate::light::{DirectChoice, Light};
 
 /// Largest total power of a light, W. The film sums pass estimates in fixed point and drops a
 /// sample beyond `film::accum::MAX_SAMPLE` (1e11 per pixel and bin): a 1e30 W lamp renders
@@ -37,6 +37,13 @@ pub struct LightCommon {
     /// light's power (or irradiance). Default: the D65 illuminant.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spectrum: Option<SpectrumRef>,
+    /// How its direct light reaches the image under `integrator.direct = "nee"`.
+    #[serde(default, skip_serializing_if = "is_auto")]
+    pub direct: DirectChoice,
+}
+
+fn is_auto(d: &DirectChoice) -> bool {
+    *d == DirectChoice::Auto
 }
 
 kinds! {
@@ -61,7 +68,16 @@ impl LightDesc {
             LightKind::Directional(l) => l.check(c, key),
             LightKind::Point(l) => l.check(c, key),
             LightKind::Spot(l) => l.check(c, key),
-            LightKind::Laser(l) => l.check(c, key),
+            LightKind::Laser(l) => {
+                l.check(c, key);
+                if self.common.direct == DirectChoice::Nee {
+                    c.fail(
+                        format!("{key}.direct"),
+                        "a laser's direct light cannot be reached by next-event estimation \
+                         (no sampled direction hits its beam): use \"auto\" or \"photons\"",
+                    );
+                }
+            }
         }
     }
 

@@ -25,6 +25,7 @@ use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
 use super::tagged::{Tagged, kinds};
 use crate::geometry::{self, ShapeKind, Transform};
+use crate::light::DirectChoice;
 use crate::spectrum::Spectrum;
 
 /// Largest radiance an emitting shape may have in any bin, W/(m^2 sr nm): about 4000 times the
@@ -73,6 +74,9 @@ pub struct ShapeCommon {
     pub emit: Option<SpectrumRef>,
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub emit_scale: f32,
+    /// How the emitted light reaches the image under `integrator.direct = "nee"` (with `emit`).
+    #[serde(default, skip_serializing_if = "is_auto")]
+    pub direct: DirectChoice,
     #[serde(default)]
     pub transform: TransformDesc,
 }
@@ -83,6 +87,10 @@ fn one() -> f32 {
 
 fn is_one(v: &f32) -> bool {
     *v == 1.0
+}
+
+fn is_auto(d: &DirectChoice) -> bool {
+    *d == DirectChoice::Auto
 }
 
 kinds! {
@@ -119,6 +127,11 @@ impl ShapeDesc {
         }
         if let Some(e) = &s.emit {
             c.spectrum_ref(&format!("{key}.emit"), e);
+        } else if s.direct != DirectChoice::Auto {
+            c.fail(
+                format!("{key}.direct"),
+                "only an emitting shape (`emit`) has direct light",
+            );
         }
         c.non_negative(&format!("{key}.emit_scale"), s.emit_scale as f64);
         let t = &s.transform;
