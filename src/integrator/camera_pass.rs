@@ -9,7 +9,7 @@ use rand::Rng as _;
 use rayon::prelude::*;
 
 use super::Integrator;
-use super::direct::Segment;
+use super::direct::{Part, Segment};
 use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
 use super::gather;
 use super::oct::Oct;
@@ -19,6 +19,7 @@ use super::rng::{self, Domain, Rng};
 use super::settings::GatherMode;
 use crate::film::{Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
+use crate::material::LobeKind;
 use crate::medium::{Mixture, WalkEnd, sample_extinction};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
@@ -156,6 +157,10 @@ struct CameraPath<'a> {
     sees_emitters: bool,
     /// The pass's gather radius.
     radius: f32,
+    /// Where and with what density the path last left a glossy (non-delta) surface by a BSDF
+    /// sample, for the MIS weight of emitters it then hits; None after the camera, a delta
+    /// bounce or a medium scattering.
+    glossy_from: Option<(Vec3, f32)>,
 }
 
 impl<'a> CameraPath<'a> {
@@ -178,6 +183,7 @@ impl<'a> CameraPath<'a> {
             gathering: true,
             sees_emitters: true,
             radius: 0.0,
+            glossy_from: None,
         }
     }
 
@@ -292,6 +298,7 @@ impl PathStep for CameraPath<'_> {
         // Light reaching the path after a medium scattering is class C light that the volumes
         // already gathered (method note 6).
         self.sees_emitters = false;
+        self.glossy_from = None;
         let p = ray.o + ray.d * t;
         let phase = &self.scene.media[m as usize].phase;
         let d = phase.sample_dir(ray.d, rng.random(), rng.random());
@@ -310,7 +317,13 @@ impl PathStep for CameraPath<'_> {
         {
             let le = scene.lights.lights()[l as usize].radiance(hit, wo);
             if !le.is_zero() {
-                self.out.direct.push((self.pixel, le * self.w));
+                let v = match (&self.integrator.direct, self.glossy_from) {
+                    (Some(d), Some((from, pdf))) => {
+                        le * self.w * d.emission_weight(scene, l, ray, hit, from, pdf)
+                    }
+                    (Some(_), None) | (None, _) => le * self.w,
+                };
+                self.out.direct.push((self.pixel, v));
             }
         }
         let Some(mat_id) = shape.material else {
@@ -321,14 +334,24 @@ impl PathStep for CameraPath<'_> {
         if pd > 0.0 && rng.random::<f32>() < pd {
             self.gather_here(hit, wo, pd);
             if let Some(direct) = &self.integrator.direct {
-                let v = direct.diffuse(scene, hit, wo, material, rng);
+                let v = direct.reflected(scene, hit, wo, material, Part::Diffuse, rng);
                 add(&mut self.nee.surface, v * self.w * (1.0 / pd));
             }
             return SurfaceStep::Stop;
         }
+        if let Some(direct) = &self.integrator.direct
+            && material.has_glossy()
+        {
+            let v = direct.reflected(scene, hit, wo, material, Part::Glossy, rng);
+            add(&mut self.nee.surface, v * self.w * (1.0 / (1.0 - pd)));
+        }
         let u = Vec3::new(rng.random(), rng.random(), rng.random());
         let Some(s) = material.sample_nondiffuse(wo, hit, u) else {
             return SurfaceStep::Stop;
+        };
+        self.glossy_from = match s.kind {
+            LobeKind::Glossy => Some((hit.p, material.pdf_nondiffuse(wo, s.wi, hit))),
+            LobeKind::Specular | LobeKind::Diffuse => None,
         };
         self.w *= s.weight * (1.0 / (1.0 - pd));
         if self.w.is_zero() {

@@ -92,10 +92,26 @@ impl Blend {
         self.first.eval_diffuse(wo, wi, hit) * wa + self.second.eval_diffuse(wo, wi, hit) * wb
     }
 
-    /// The non-diffuse parts only: a part that has one is picked in proportion to its weight
-    /// (probability r_c), and its non-diffuse sample weighted by w_c / r_c. `pdf` is the picked
-    /// part's density times r_c.
-    pub fn sample_nondiffuse(&self, wo: Vec3, hit: &Hit, u: Vec3) -> Option<BsdfSample> {
+    pub fn eval_nondiffuse(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> Spectrum {
+        let (wa, wb) = self.weights(hit);
+        self.first.eval_nondiffuse(wo, wi, hit) * wa + self.second.eval_nondiffuse(wo, wi, hit) * wb
+    }
+
+    /// The density of [`Self::sample_nondiffuse`]: its parts' densities mixed by the
+    /// probabilities with which it picks them.
+    pub fn pdf_nondiffuse(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> f32 {
+        let (ra, rb) = self.nondiffuse_picks(hit);
+        let total = ra + rb;
+        if total <= 0.0 {
+            return 0.0;
+        }
+        (ra * self.first.pdf_nondiffuse(wo, wi, hit) + rb * self.second.pdf_nondiffuse(wo, wi, hit))
+            / total
+    }
+
+    /// Unnormalised probabilities of picking each part for a non-diffuse sample: its weight
+    /// if it has a non-diffuse lobe, else 0.
+    fn nondiffuse_picks(&self, hit: &Hit) -> (f32, f32) {
         let (wa, wb) = self.weights(hit);
         let ra = if self.first.has_nondiffuse() { wa } else { 0.0 };
         let rb = if self.second.has_nondiffuse() {
@@ -103,6 +119,15 @@ impl Blend {
         } else {
             0.0
         };
+        (ra, rb)
+    }
+
+    /// The non-diffuse parts only: a part that has one is picked in proportion to its weight
+    /// (probability r_c), and its non-diffuse sample weighted by w_c / r_c. `pdf` is the picked
+    /// part's density times r_c.
+    pub fn sample_nondiffuse(&self, wo: Vec3, hit: &Hit, u: Vec3) -> Option<BsdfSample> {
+        let (wa, wb) = self.weights(hit);
+        let (ra, rb) = self.nondiffuse_picks(hit);
         let total = ra + rb;
         if total <= 0.0 {
             return None;

@@ -169,6 +169,16 @@ impl Material {
         }
     }
 
+    /// Has the material a glossy (non-delta, non-diffuse) part, which next-event estimation
+    /// can reach with a sampled direction?
+    pub fn has_glossy(&self) -> bool {
+        match self {
+            Material::Glossy(_) => true,
+            Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => false,
+            Material::Blend(b) => b.first.has_glossy() || b.second.has_glossy(),
+        }
+    }
+
     /// Has the material a part that [`Self::sample_nondiffuse`] samples?
     pub fn has_nondiffuse(&self) -> bool {
         match self {
@@ -302,6 +312,39 @@ impl Material {
             },
             Material::Mirror { .. } | Material::Dielectric(_) => Spectrum::ZERO,
             Material::Blend(b) => b.eval_diffuse(wo, wi, hit),
+        }
+    }
+
+    /// f of the non-diffuse part only (no cosine): the glossy coat; zero for delta lobes, which
+    /// no given direction can hit.
+    pub fn eval_nondiffuse(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> Spectrum {
+        match self {
+            Material::Glossy(g) => {
+                let Some(f) = side_frame(wo, hit) else {
+                    return Spectrum::ZERO;
+                };
+                match reflects(wo, wi, hit, &f) {
+                    Some((lo, li)) => Spectrum::splat(g.f_specular(lo, li), g.n_bins),
+                    None => Spectrum::ZERO,
+                }
+            }
+            Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => {
+                Spectrum::ZERO
+            }
+            Material::Blend(b) => b.eval_nondiffuse(wo, wi, hit),
+        }
+    }
+
+    /// Density (solid angle) with which [`Self::sample_nondiffuse`] returns `wi`; zero for
+    /// delta lobes. Next-event estimation weighs its light samples against it (multiple
+    /// importance sampling).
+    pub fn pdf_nondiffuse(&self, wo: Vec3, wi: Vec3, hit: &Hit) -> f32 {
+        match self {
+            Material::Glossy(g) => side_frame(wo, hit)
+                .and_then(|f| reflects(wo, wi, hit, &f))
+                .map_or(0.0, |(lo, li)| g.pdf_specular(lo, li)),
+            Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
+            Material::Blend(b) => b.pdf_nondiffuse(wo, wi, hit),
         }
     }
 

@@ -17,6 +17,8 @@ pub mod sampling;
 mod shadow;
 mod surface;
 
+pub use surface::Part;
+
 use crate::light::{DirectChoice, Light};
 use crate::world::Scene;
 
@@ -35,6 +37,8 @@ pub struct Direct {
     nee: Vec<bool>,
     /// The handled lights, picked in proportion to their power: (light, cumulative probability).
     picks: Vec<(u32, f32)>,
+    /// Per scene light: the probability of picking it (0 when not handled).
+    prob: Vec<f32>,
     samples: u32,
 }
 
@@ -82,9 +86,11 @@ impl Direct {
                 (i as u32, (acc / total) as f32)
             })
             .collect();
+        let prob = weights.iter().map(|w| (w / total) as f32).collect();
         Some(Self {
             nee,
             picks,
+            prob,
             samples: desc.nee_samples.max(1),
         })
     }
@@ -93,6 +99,11 @@ impl Direct {
     /// deposit it).
     pub fn handles(&self, i: u32) -> bool {
         self.nee.get(i as usize).copied().unwrap_or(false)
+    }
+
+    /// The probability of picking light `i` for a sample.
+    fn probability(&self, i: u32) -> f32 {
+        self.prob.get(i as usize).copied().unwrap_or(0.0)
     }
 
     /// A handled light from a uniform `u`: (index, probability).
