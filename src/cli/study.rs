@@ -79,10 +79,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     let opts = loaded.desc.film.output_options();
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("{}: cannot create output folder", args.dir.display()))?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .context("cannot start worker threads")?;
+    let pool = super::thread_pool(args.threads)?;
     let cfg = StudyConfig {
         scene: args.scene.scene.clone(),
         sets: args.scene.sets.clone(),
