@@ -151,7 +151,7 @@ fn run_variants(
     opts: &output::OutputOptions,
     offset: f64,
     progress: &mut Progress,
-) -> anyhow::Result<(Vec<study::Row>, Vec<(usize, String)>)> {
+) -> anyhow::Result<(Vec<study::Row>, study::InvalidVariants)> {
     let mut done_runs = 0usize;
     let mut write_err: Option<anyhow::Error> = None;
     let result = study::run_study(cfg, reference, |ev| match ev {

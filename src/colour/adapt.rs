@@ -26,7 +26,6 @@ fn bradford() -> Mat3 {
 }
 
 /// CAT02 (CIE 159:2004), which palette does not define.
-
 const CAT02: Mat3 = [
     [0.7328, 0.4296, -0.1624],
     [-0.7036, 1.6975, 0.0061],

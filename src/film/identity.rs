@@ -168,12 +168,7 @@ impl FilmId {
         }
         if self.scene_hash != reference.scene_hash || self.description != reference.description {
             let mut found = Vec::new();
-            differences(
-                &self.description,
-                &reference.description,
-                &mut String::new(),
-                &mut found,
-            );
+            differences(&self.description, &reference.description, "", &mut found);
             return Err(Mismatch::Settings(found));
         }
         let (ours, theirs) = (&self.sampling, &reference.sampling);
@@ -239,7 +234,7 @@ fn remove_key(v: &mut Value, dotted: &str) {
 }
 
 /// Collects the dotted keys (`media.fog.g`, `shapes.1.radius`) whose values differ.
-fn differences(a: &Value, b: &Value, at: &mut String, out: &mut Vec<Difference>) {
+fn differences(a: &Value, b: &Value, at: &str, out: &mut Vec<Difference>) {
     let child = |at: &str, k: &str| {
         if at.is_empty() {
             k.to_string()
@@ -251,19 +246,19 @@ fn differences(a: &Value, b: &Value, at: &mut String, out: &mut Vec<Difference>)
         (Value::Object(x), Value::Object(y)) => {
             let keys: std::collections::BTreeSet<&String> = x.keys().chain(y.keys()).collect();
             for k in keys {
-                let mut sub = child(at, k);
+                let sub = child(at, k);
                 match (x.get(k), y.get(k)) {
-                    (Some(p), Some(q)) => differences(p, q, &mut sub, out),
+                    (Some(p), Some(q)) => differences(p, q, &sub, out),
                     (p, q) => out.push(difference(sub, p, q)),
                 }
             }
         }
         (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
             for (i, (p, q)) in x.iter().zip(y).enumerate() {
-                differences(p, q, &mut child(at, &i.to_string()), out);
+                differences(p, q, &child(at, &i.to_string()), out);
             }
         }
-        _ if a != b => out.push(difference(at.clone(), Some(a), Some(b))),
+        _ if a != b => out.push(difference(at.to_string(), Some(a), Some(b))),
         _ => {}
     }
 }
