@@ -279,3 +279,14 @@ fn the_checks_see_what_they_check() {
     );
     assert!(edges[""]["film"].contains("spectrum"));
 }
+
+#[test]
+fn clap_is_used_only_by_the_command_line() {
+    let outside: Vec<String> = sources()
+        .into_iter()
+        .filter(|s| s.module.first().is_none_or(|m| m != "#bin"))
+        .filter(|s| s.code.contains("clap::") || s.code.contains("clap ::"))
+        .map(|s| s.rel)
+        .collect();
+    assert!(outside.is_empty(), "clap in the library: {outside:?}");
+}

@@ -91,7 +91,7 @@ mod tests {
         );
         assert_eq!(
             r.shell(),
-            "brume render 'my scene.toml' --set media.fog.g=0.3 -o a.exr --pass-range 15..40 \
+            "brume render 'my scene.toml' --set 'media.fog.g=0.3' -o a.exr --pass-range 15..40 \
              --resume c.brume"
         );
     }

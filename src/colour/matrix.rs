@@ -1,5 +1,6 @@
-//! 3x3 matrices in f64 (row-major) for colour-space conversions, computed with palette's
-//! matrix algebra and XYZ / xyY conversions.
+//! 3x3 matrices in f64 (row-major) for colour-space conversions: products and XYZ / xyY
+//! conversions through palette (the same operations in the same order as before, so the same
+//! bits), the inverse by brume's cofactors (see `invert`).
 
 use palette::convert::{Convert, FromColorUnclamped};
 use palette::white_point::Any;
@@ -37,10 +38,28 @@ pub fn diag(v: [f64; 3]) -> Mat3 {
     [[v[0], 0.0, 0.0], [0.0, v[1], 0.0], [0.0, 0.0, v[2]]]
 }
 
-/// The inverse. Only matrices fixed in the code are inverted (primaries, cone responses), all
-/// well conditioned; palette panics on a singular one, which no input can produce.
+/// The inverse, by cofactors divided by the determinant. Not palette's `invert`, which multiplies
+/// by the determinant's reciprocal: that moves the last bits of the XYZ -> RGB matrices, and the
+/// shipped RGB -> spectrum table (fitted through them, and so every rendered RGB material) is
+/// checked to equal a fresh fit (`tests/spectrum_rgb_table.rs`). The matrices inverted are all
+/// fixed in the code (primaries, cone responses) and well conditioned.
 pub fn invert(m: &Mat3) -> Mat3 {
-    from_palette(to_palette(m).invert())
+    let c =
+        |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+    let cof = [
+        [c(1, 2, 1, 2), -c(1, 2, 0, 2), c(1, 2, 0, 1)],
+        [-c(0, 2, 1, 2), c(0, 2, 0, 2), -c(0, 2, 0, 1)],
+        [c(0, 1, 1, 2), -c(0, 1, 0, 2), c(0, 1, 0, 1)],
+    ];
+    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
+    // The inverse is the transposed cofactor matrix over the determinant.
+    let mut inv = [[0.0; 3]; 3];
+    for (i, row) in inv.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = cof[j][i] / det;
+        }
+    }
+    inv
 }
 
 /// XYZ (with Y = 1) of a chromaticity.
