@@ -2,7 +2,7 @@
 //! spectra/srgb-coefficients.bin, which brume ships so that no render pays for the fit.
 //! Run: `cargo run --release --example make_rgb_table`.
 
-use brume::spectrum::rgb::{CoefficientTable, FitContext};
+use brume::colour::rgb::{CoefficientTable, FitContext};
 
 fn main() -> std::process::ExitCode {
     let Some(ctx) = FitContext::srgb() else {

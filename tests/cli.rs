@@ -194,3 +194,6 @@ fn help_documents_every_flag() {
         assert!(text.contains(flag), "render --help lacks {flag}");
     }
 }
+
+#[path = "cli/docs_examples.rs"]
+mod docs_examples;

@@ -1,5 +1,6 @@
 //! Interrupt, checkpoint/resume, pass-range slices and merge, thread counts: every path to an
-//! image of passes 0..N of a seed must give the same bytes. Drives the built `brume` binary.
+//! image of passes 0..N of a seed must give the same bytes; every request that would give
+//! another image, or lose work, is refused before rendering. Drives the built `brume` binary.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -244,4 +245,390 @@ fn image_is_valid_png(p: &Path) -> bool {
                 .ok()
         })
         .is_some()
+}
+
+/// `brume render fog-cube SMALL... extra...` (not asserting anything).
+fn try_render(dir: &Path, extra: &[&str]) -> Output {
+    let s = scene(dir);
+    let mut args = vec!["render", s.to_str().unwrap(), "-q"];
+    args.extend_from_slice(SMALL);
+    args.extend_from_slice(extra);
+    brume(dir, &args)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Refused before rendering: rc != 0, the message says `words`, and no file appeared.
+fn assert_refused(dir: &Path, extra: &[&str], words: &[&str]) {
+    let before = listing(dir);
+    let t0 = Instant::now();
+    let out = try_render(dir, extra);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{extra:?} accepted: {err}");
+    for w in words {
+        assert!(err.contains(w), "{extra:?}: {err:?} lacks {w:?}");
+    }
+    assert_eq!(listing(dir), before, "{extra:?} wrote files");
+    // Refused before any pass: well under the time of the 100000 passes asked for.
+    assert!(
+        t0.elapsed() < Duration::from_secs(20),
+        "{extra:?} was not refused at once"
+    );
+}
+
+fn listing(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn bad_requests_are_refused_before_rendering() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    scene(d);
+    std::fs::create_dir(d.join("folder.exr")).unwrap();
+    std::fs::write(d.join("junk.brume"), b"not a film").unwrap();
+    let cases: &[(&[&str], &[&str])] = &[
+        (
+            &["--passes", "100000", "-o", "folder.exr"],
+            &["folder.exr", "folder"],
+        ),
+        (
+            &["--passes", "100000", "-o", "missing/a.exr"],
+            &["missing", "does not exist"],
+        ),
+        (
+            &[
+                "--passes",
+                "100000",
+                "--checkpoint",
+                "x.brume",
+                "-o",
+                "x.brume",
+            ],
+            &["same file"],
+        ),
+        (
+            &["--passes", "100000", "-o", "a.exr", "-o", "./a.exr"],
+            &["same file"],
+        ),
+        (
+            &["--passes", "100000", "--checkpoint", "c.exr", "-o", "a.png"],
+            &["--checkpoint c.exr", "film file"],
+        ),
+        (
+            &["--pass-range", "0..100000", "-o", "a.exr"],
+            &["--pass-range", ".brume"],
+        ),
+        (
+            &["--passes", "100000", "--threads", "100000", "-o", "a.exr"],
+            &["--threads 100000", "at most"],
+        ),
+        (
+            &[
+                "--pass-range",
+                "9007199254740990..9007199254740993",
+                "-o",
+                "p.brume",
+            ],
+            &["pass indices end at"],
+        ),
+        (
+            &[
+                "--passes",
+                "100000",
+                "--resume",
+                "junk.brume",
+                "-o",
+                "a.exr",
+            ],
+            &["junk.brume", "not a brume film file"],
+        ),
+    ];
+    for (extra, words) in cases {
+        assert_refused(d, extra, words);
+    }
+}
+
+#[test]
+fn resumes_that_disagree_with_the_checkpoint_are_refused_with_the_command_that_continues_it() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    render(d, &["--pass-range", "2..4", "-o", "part.brume"]);
+    render(d, &["--pass-range", "0..3", "-o", "full.brume"]);
+    // --passes on a part would silently render 2..(2 + N): refused, naming --pass-range.
+    let out = try_render(
+        d,
+        &["--resume", "part.brume", "--passes", "5", "-o", "x.brume"],
+    );
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{err}");
+    assert!(err.contains("part.brume holds passes 2..4"), "{err}");
+    let hint = between(&err, "continue it with `", "`");
+    assert!(
+        hint.contains("--pass-range 2..5") && hint.contains("--set"),
+        "{hint}"
+    );
+    // Following the hint renders exactly passes 2..5, as a straight slice does.
+    let out = Command::new("sh")
+        .current_dir(d)
+        .args(["-c", &hint])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{hint}: {}", stderr(&out));
+    render(d, &["--pass-range", "2..5", "-o", "straight.brume"]);
+    assert_same(d, "x.brume", "straight.brume");
+    // A range that ends before what the checkpoint holds would write more than asked.
+    let out = try_render(
+        d,
+        &[
+            "--resume",
+            "full.brume",
+            "--pass-range",
+            "0..2",
+            "-o",
+            "y.brume",
+        ],
+    );
+    let err = stderr(&out);
+    assert!(
+        !out.status.success() && err.contains("full.brume holds passes 0..3"),
+        "{err}"
+    );
+    assert!(err.contains("--pass-range 0..3"), "{err}");
+    let out = try_render(
+        d,
+        &["--resume", "full.brume", "--passes", "2", "-o", "y.brume"],
+    );
+    let err = stderr(&out);
+    assert!(!out.status.success() && err.contains("at least 3"), "{err}");
+    assert!(!d.join("y.brume").exists());
+}
+
+fn between(text: &str, start: &str, end: &str) -> String {
+    let from = text
+        .find(start)
+        .unwrap_or_else(|| panic!("no {start:?} in {text}"))
+        + start.len();
+    let len = text[from..]
+        .find(end)
+        .unwrap_or_else(|| panic!("no end in {text}"));
+    text[from..from + len].to_string()
+}
+
+/// Rewrites the sampling record of a film file, as another machine would have written it.
+fn rewrite_sampling(path: &Path, f: impl FnOnce(&mut brume::film::Sampling)) {
+    let mut file = brume::film::checkpoint::read(path).unwrap();
+    f(&mut file.id.sampling);
+    brume::film::checkpoint::write(path, &file.film, &file.id).unwrap();
+}
+
+#[test]
+fn merge_compares_the_gather_budget_and_not_the_machine() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    render(d, &["--passes", "3", "-o", "s.exr"]);
+    render(d, &["--pass-range", "0..1", "-o", "p0.brume"]);
+    render(d, &["--pass-range", "1..3", "-o", "p1.brume"]);
+    // Rendered with the default budget on a machine with another amount of memory: the
+    // budget it used is recorded, and it is the same, so the parts merge bit for bit.
+    rewrite_sampling(&d.join("p1.brume"), |s| {
+        s.machine_memory = s.machine_memory / 2 + 1
+    });
+    let out = brume(d, &["merge", "p0.brume", "p1.brume", "-o", "m.exr", "-q"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_same(d, "s.exr", "m.exr");
+    // A part whose budget followed its machine's memory (another tiling) is refused.
+    rewrite_sampling(&d.join("p1.brume"), |s| s.gather_budget /= 2);
+    let out = brume(d, &["merge", "p0.brume", "p1.brume", "-o", "m2.exr"]);
+    let err = stderr(&out);
+    assert!(
+        !out.status.success() && err.contains("gather memory budget"),
+        "{err}"
+    );
+    assert!(
+        err.contains("integrator.max_gather_bytes") && err.contains("p1.brume"),
+        "{err}"
+    );
+    // Parts rendered with different budgets are refused, and so is resuming across them.
+    render(
+        d,
+        &[
+            "--pass-range",
+            "1..3",
+            "--set",
+            "integrator.max_gather_bytes=20000",
+            "-o",
+            "q1.brume",
+        ],
+    );
+    let out = brume(d, &["merge", "p0.brume", "q1.brume", "-o", "m3.exr"]);
+    let err = stderr(&out);
+    assert!(
+        !out.status.success() && err.contains("gather memory budget 20000 bytes"),
+        "{err}"
+    );
+    let out = try_render(
+        d,
+        &[
+            "--resume",
+            "p0.brume",
+            "--pass-range",
+            "0..3",
+            "-o",
+            "r.brume",
+            "--set",
+            "integrator.max_gather_bytes=20000",
+        ],
+    );
+    assert!(
+        !out.status.success() && stderr(&out).contains("gather memory budget"),
+        "{}",
+        stderr(&out)
+    );
+    for f in ["m2.exr", "m3.exr", "r.brume"] {
+        assert!(!d.join(f).exists(), "{f} written");
+    }
+}
+
+#[test]
+fn leftover_temporary_files_of_killed_runs_are_removed() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    // PIDs above Linux's maximum (2^22) are never running; PID 1 always is.
+    let dead = [
+        "a.exr.4194305.tmp.exr",
+        "c.brume.4194306.tmp",
+        "c.brume.4194307.tmp.brume",
+    ];
+    for name in dead.iter().chain(&["c.brume.1.tmp.brume"]) {
+        std::fs::write(d.join(format!(".{name}")), vec![0u8; 1000]).unwrap();
+    }
+    let out = try_render(
+        d,
+        &["--passes", "1", "-o", "a.exr", "--checkpoint", "c.brume"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let err = stderr(&out);
+    for name in dead {
+        assert!(!d.join(format!(".{name}")).exists(), "{name} kept");
+        assert!(err.contains(name), "{err} does not name {name}");
+    }
+    assert!(
+        d.join(".c.brume.1.tmp.brume").exists(),
+        "a running writer's file was removed"
+    );
+}
+
+/// Slow passes (a few hundred milliseconds), so that a test can act between them.
+const SLOW: &[&str] = &["--set", "integrator.forward_rays=400000"];
+
+fn spawn_render(dir: &Path, extra: &[&str]) -> std::process::Child {
+    let s = scene(dir);
+    let mut args = vec!["render".to_string(), s.to_str().unwrap().to_string()];
+    args.extend(SMALL.iter().chain(SLOW).chain(extra).map(|a| a.to_string()));
+    Command::new(env!("CARGO_BIN_EXE_brume"))
+        .current_dir(dir)
+        .args(&args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+fn wait_for(path: &Path) {
+    let t0 = Instant::now();
+    while !path.exists() {
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "{} never appeared",
+            path.display()
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn sigterm_saves_the_passes_and_the_printed_command_continues_the_render() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let extra = [
+        "--passes",
+        "6",
+        "--checkpoint",
+        "c.brume",
+        "--checkpoint-every",
+        "0.00001",
+        "-o",
+        "i.exr",
+    ];
+    let child = spawn_render(d, &extra);
+    wait_for(&d.join("c.brume"));
+    let kill = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    // The hint is the original command (its --set options included) resuming the checkpoint.
+    let hint = between(&err, "continue with `", "`");
+    assert!(
+        hint.contains("--set") && hint.contains("--resume c.brume"),
+        "{hint}"
+    );
+    let out = Command::new("sh")
+        .current_dir(d)
+        .args(["-c", &hint])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{hint}: {}", stderr(&out));
+    let mut straight: Vec<&str> = SLOW.to_vec();
+    straight.extend(["--passes", "6", "-o", "s.exr"]);
+    render(d, &straight);
+    assert_same(d, "i.exr", "s.exr");
+}
+
+#[test]
+fn a_failed_write_after_rendering_saves_the_film_and_says_where() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    std::fs::create_dir(d.join("gone")).unwrap();
+    let extra = [
+        "--passes",
+        "4",
+        "-o",
+        "gone/out.exr",
+        "--checkpoint",
+        "gone/c.brume",
+        "--checkpoint-every",
+        "0.00001",
+    ];
+    let child = spawn_render(d, &extra);
+    // Once the first pass is saved the outputs were checked: take their folder away.
+    wait_for(&d.join("gone/c.brume"));
+    while d.join("gone").exists() {
+        let _ = std::fs::remove_dir_all(d.join("gone"));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{err}");
+    assert!(err.contains("gone/out.exr"), "{err}");
+    let saved = between(&err, "is saved in ", " ");
+    assert!(err.contains("passes 0..4"), "{err}");
+    // The saved film gives the image asked for, exactly.
+    let out = brume(d, &["merge", &saved, "-o", "m.exr", "-q"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut straight: Vec<&str> = SLOW.to_vec();
+    straight.extend(["--passes", "4", "-o", "s.exr"]);
+    render(d, &straight);
+    assert_same(d, "m.exr", "s.exr");
 }

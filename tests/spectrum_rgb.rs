@@ -1,9 +1,10 @@
 //! RGB -> spectrum (Jakob and Hanika 2019): round trips through the film's own colorimetry.
 //! Run with `-- --nocapture` to print the round-trip figures quoted in docs/colour.md.
 
+use brume::colour::rgb::{CoefficientTable, FitContext};
 use brume::colour::{ColourSpace, FilmToRgb, Observer, XyzWeights, srgb_decode, srgb_encode};
-use brume::spectrum::rgb::{CoefficientTable, FitContext};
-use brume::spectrum::{Extrapolation, RgbKind, SpectralGrid, resolve, rgb_to_spectrum};
+use brume::colour::{RgbKind, rgb_to_spectrum};
+use brume::spectrum::{Extrapolation, SpectralGrid, resolve};
 
 /// sRGB-encoded grid 0, 1/16, ..., 1 per channel, returned linear.
 fn grid_colours() -> Vec<[f32; 3]> {

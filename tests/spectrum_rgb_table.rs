@@ -1,6 +1,6 @@
 //! The shipped RGB -> spectrum coefficient table is the fit brume would compute itself.
 
-use brume::spectrum::rgb::{CoefficientTable, FitContext};
+use brume::colour::rgb::{CoefficientTable, FitContext};
 
 #[test]
 fn shipped_table_matches_a_fresh_fit() {

@@ -1,73 +1,20 @@
 //! `brume merge`: combines film part files (from `brume render --pass-range`) into the image a
-//! single run of all their passes gives, bit for bit. Also the helpers both commands share to
-//! identify a render (scene hash, stored output settings).
+//! single run of all their passes gives, bit for bit.
+//!
+//! Every part's header is read and checked (same render, adjacent ranges, outputs writable)
+//! before any sums are loaded; the sums are then added one part at a time, so a merge holds
+//! two films in memory whatever the number of parts.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
 
 use super::MergeArgs;
-use brume::film::checkpoint::{self, Fnv};
-use brume::film::output::{self, OutputOptions};
-use brume::film::{Film, FilmId};
-use brume::scene::desc::{FilmDesc, SceneDesc};
-
-/// Extension of film files (checkpoints and parts).
-pub const FILM_EXT: &str = "brume";
-
-pub fn is_film_path(p: &Path) -> bool {
-    p.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case(FILM_EXT))
-}
-
-/// A stable hash of everything in the scene that changes the film: the description without
-/// the pass count, seed and output file names (which may differ between slices of one render).
-/// Files the scene refers to (textures, meshes, tables) are identified by path, not content.
-pub fn scene_hash(desc: &SceneDesc) -> u64 {
-    let mut d = desc.clone();
-    d.integrator.passes = 0;
-    d.integrator.seed = 0;
-    d.film.outputs.clear();
-    let text = serde_json::to_string(&d).unwrap_or_default();
-    let mut h = Fnv::default();
-    h.update(text.as_bytes());
-    h.0
-}
-
-pub fn film_id(desc: &SceneDesc, seed: u64) -> FilmId {
-    FilmId {
-        seed,
-        scene_hash: scene_hash(desc),
-        meta: serde_json::to_string(&desc.film).unwrap_or_default(),
-    }
-}
-
-fn output_options(meta: &str) -> anyhow::Result<OutputOptions> {
-    let film: FilmDesc =
-        serde_json::from_str(meta).context("the part's stored output settings are unreadable")?;
-    Ok(film.output_options())
-}
-
-/// Writes images (by extension) and film files of `film`.
-pub fn write_outputs(
-    outputs: &[PathBuf],
-    film: &Film,
-    id: &FilmId,
-    opts: &OutputOptions,
-) -> anyhow::Result<()> {
-    let mut image = None;
-    for path in outputs {
-        if is_film_path(path) {
-            checkpoint::write(path, film, id)?;
-        } else {
-            let img = image.get_or_insert_with(|| film.image());
-            output::write(path, img, opts)?;
-        }
-    }
-    Ok(())
-}
+use super::film_files::{self, is_film_path};
+use super::outputs;
+use brume::film::checkpoint::{self, FilmHeader};
+use brume::film::output;
 
 pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(!args.parts.is_empty(), "no part files given");
@@ -76,37 +23,31 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             output::format_of(p)?;
         }
     }
+    outputs::check_distinct(&args.outputs.iter().collect::<Vec<_>>())?;
     let mut parts = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
-        let f = checkpoint::read(p)?;
-        parts.push((p.clone(), f));
+        parts.push((p.clone(), checkpoint::read_header(p)?));
     }
     // Integer sums make the order irrelevant to the result; sorting only makes gaps and
     // overlaps easy to report.
-    parts.sort_by_key(|(_, f)| f.film.first);
+    parts.sort_by_key(|(_, h)| h.first);
+    check_parts(&parts)?;
+    outputs::prepare(&args.outputs)?;
+
     let (first_path, first) = &parts[0];
-    let id = first.id.clone();
-    let mut film = first.film.clone();
-    for (path, part) in &parts[1..] {
-        anyhow::ensure!(
-            part.id.scene_hash == id.scene_hash,
-            "{}: part of another scene than {}",
-            path.display(),
-            first_path.display()
-        );
-        anyhow::ensure!(
-            part.id.seed == id.seed,
-            "{}: seed {} differs from {}'s seed {}",
-            path.display(),
-            part.id.seed,
-            first_path.display(),
-            id.seed
-        );
+    let mut film = checkpoint::read(first_path)?.film;
+    for (path, _) in &parts[1..] {
+        let part = checkpoint::read(path)?;
         film.merge(&part.film)
             .with_context(|| format!("{}: cannot merge", path.display()))?;
     }
-    let opts = output_options(&id.meta)?;
-    write_outputs(&args.outputs, &film, &id, &opts)?;
+    let id = &first.id;
+    let opts = film_files::output_options(id)?;
+    let failed = film_files::write_outputs(&args.outputs, &film, id, &opts);
+    if let Some(e) = failed.into_iter().next() {
+        // The parts are untouched: the merge can simply be run again.
+        return Err(e.context("merge not written (the parts are unchanged)"));
+    }
     if !args.quiet {
         eprintln!(
             "brume: merged {} parts: passes {}..{} of seed {}{}; wrote {}",
@@ -119,7 +60,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             } else {
                 String::new()
             },
-            list(&args.outputs)
+            film_files::list(&args.outputs)
         );
     }
     if film.first != 0 {
@@ -131,10 +72,38 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-pub fn list(paths: &[PathBuf]) -> String {
-    paths
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect::<Vec<_>>()
-        .join(", ")
+/// Same render, same film shape, adjacent pass ranges, and enough memory for two films.
+fn check_parts(parts: &[(PathBuf, FilmHeader)]) -> anyhow::Result<()> {
+    let (first_path, first) = &parts[0];
+    let first_name = first_path.display().to_string();
+    let shape = |h: &FilmHeader| (h.width, h.height, h.grid);
+    for w in parts.windows(2) {
+        let ((pa, a), (pb, b)) = (&w[0], &w[1]);
+        film_files::check_same_render(&b.id, &pb.display().to_string(), &first.id, &first_name)?;
+        anyhow::ensure!(
+            shape(a) == shape(b),
+            "{} and {}: films differ in size or spectral grid",
+            pa.display(),
+            pb.display()
+        );
+        anyhow::ensure!(
+            a.end() == b.first,
+            "{} (passes {}..{}) and {} (passes {}..{}): pass ranges are not adjacent",
+            pa.display(),
+            a.first,
+            a.end(),
+            pb.display(),
+            b.first,
+            b.end()
+        );
+    }
+    let largest = parts.iter().map(|(_, h)| h.file_bytes).max().unwrap_or(0);
+    if let Some(ram) = film_files::machine_memory() {
+        anyhow::ensure!(
+            largest.saturating_mul(2) <= ram,
+            "{first_name}: merging needs two films in memory ({largest} bytes each) but the \
+             machine has {ram} bytes"
+        );
+    }
+    Ok(())
 }

@@ -1,9 +1,13 @@
 //! clap definitions of brume's subcommands and their dispatch.
 
+mod command_line;
+mod film_files;
 mod info;
 mod merge;
+mod outputs;
 mod progress;
 mod render;
+mod spectrum;
 mod study;
 
 use std::path::PathBuf;
@@ -31,7 +35,7 @@ pub enum Command {
     Info(SceneArgs),
     /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
     /// emission spectrum.
-    Spectrum(brume::colour::cli::SpectrumArgs),
+    Spectrum(spectrum::SpectrumArgs),
     /// Render variants of a scene (`--vary KEY=V1,V2`) for equal time against a reference and
     /// measure their error: CSV, JSON summary and plots.
     Study(study::StudyArgs),
@@ -66,7 +70,7 @@ pub struct RenderArgs {
     /// bit-identical for a given seed and pass count whatever the thread count.
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default or 0: all cores; at most 1024).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     /// Print nothing but errors.
@@ -79,8 +83,8 @@ pub struct RenderArgs {
     /// Minutes between periodic checkpoints (needs --checkpoint).
     #[arg(long, value_name = "MINUTES", requires = "checkpoint")]
     pub checkpoint_every: Option<f64>,
-    /// Continue the render saved in FILE (a checkpoint or part file) up to --passes in total;
-    /// the image is bit-identical to an uninterrupted run.
+    /// Continue the render saved in FILE (a checkpoint) up to --passes in total, or a part file
+    /// with its own --pass-range; the image is bit-identical to an uninterrupted run.
     #[arg(long, value_name = "FILE")]
     pub resume: Option<PathBuf>,
     /// Render only passes A..B (A inclusive, B exclusive) of the seed's sequence, for a
@@ -112,9 +116,24 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Merge(a) => merge::run(&a),
         Command::Info(a) => info::run(&a),
         Command::Study(a) => study::run(&a),
-        Command::Spectrum(a) => {
-            println!("{}", brume::colour::cli::run(&a)?);
-            Ok(ExitCode::SUCCESS)
-        }
+        Command::Spectrum(a) => spectrum::run(&a),
     }
+}
+
+/// More worker threads than this is a typo, not a machine: each thread reserves a stack, and
+/// 100 000 of them exhaust the memory before the first pass.
+const MAX_THREADS: usize = 1024;
+
+/// The worker pool for `--threads` (None or 0: one thread per core).
+pub fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let n = threads.unwrap_or(0);
+    anyhow::ensure!(
+        n <= MAX_THREADS,
+        "--threads {n}: at most {MAX_THREADS} worker threads (this machine has {} cores)",
+        std::thread::available_parallelism().map_or(1, |c| c.get())
+    );
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))
 }

@@ -79,10 +79,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     let opts = loaded.desc.film.output_options();
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("{}: cannot create output folder", args.dir.display()))?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-        .context("cannot start worker threads")?;
+    let pool = super::thread_pool(args.threads)?;
     let cfg = StudyConfig {
         scene: args.scene.scene.clone(),
         sets: args.scene.sets.clone(),
@@ -98,77 +95,11 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     let total = ((study_total + if rendering_ref { ref_time } else { 0.0 }) * 10.0).ceil() as u64;
     let mut progress = Progress::new("study", total, args.quiet);
 
-    let dir = args.dir.clone();
-    let (reference, ref_name) = pool.install(|| -> anyhow::Result<(Reference, String)> {
-        match &args.reference {
-            Some(p) => {
-                anyhow::ensure!(
-                    !p.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")),
-                    "{}: EXR references are not supported yet; pass a reference.bin written \
-                     by `brume study`",
-                    p.display()
-                );
-                Ok((Reference::load(p)?, p.display().to_string()))
-            }
-            None => {
-                let mut sets = args.scene.sets.clone();
-                if args.reference_sets.is_empty() {
-                    sets.push("integrator.volume=cylinder".into());
-                } else {
-                    sets.extend(args.reference_sets.iter().cloned());
-                }
-                let r =
-                    study::render_reference(&args.scene.scene, &sets, ref_time, args.seed, |t| {
-                        progress.set(((t.min(ref_time)) * 10.0) as u64, "reference");
-                    })?;
-                let path = dir.join("reference.bin");
-                r.save(&path)?;
-                let img = image_of(&r);
-                output::write(&dir.join("reference.png"), &img, &opts)?;
-                Ok((r, format!("{} ({})", path.display(), sets.join(" "))))
-            }
-        }
-    })?;
+    let (reference, ref_name) = pool.install(|| reference(args, ref_time, &opts, &mut progress))?;
     let offset = if rendering_ref { ref_time } else { 0.0 };
-
-    let mut done_runs = 0usize;
-    let mut write_err: Option<anyhow::Error> = None;
-    let (rows, invalid) = pool.install(|| {
-        study::run_study(&cfg, &reference, |ev| match ev {
-            Event::Pass {
-                variant,
-                run,
-                seconds,
-            } => {
-                let t = offset + args.time * done_runs as f64 + seconds.min(args.time);
-                progress.set(
-                    (t * 10.0) as u64,
-                    &format!("{} run {}", variant.label, run + 1),
-                );
-            }
-            Event::RunDone {
-                variant,
-                run,
-                image,
-            } => {
-                done_runs += 1;
-                if run == 0 {
-                    let p = dir.join(format!("{}.png", slug(&variant.label)));
-                    if let Err(e) = output::write(&p, image, &opts) {
-                        write_err.get_or_insert(e.into());
-                    }
-                }
-            }
-            Event::Invalid { variant, message } => {
-                done_runs += args.runs as usize;
-                eprintln!("brume: variant {} skipped: {message}", variant.label);
-            }
-        })
-    })?;
+    let (rows, invalid) =
+        pool.install(|| run_variants(args, &cfg, &reference, &opts, offset, &mut progress))?;
     progress.finish();
-    if let Some(e) = write_err {
-        return Err(e);
-    }
     let summary = study::summarise(
         &cfg,
         &ref_name,
@@ -176,19 +107,108 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         &rows,
         &invalid,
     );
-    study::write_csv(&dir.join("study.csv"), &variants, &rows)?;
-    let json = serde_json::to_string_pretty(&summary)?;
-    std::fs::write(dir.join("summary.json"), json)
+    write_results(&args.dir, &variants, &rows, &summary)?;
+    print_table(&summary, &args.dir);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The reference given with --reference, or one rendered (and saved) for the study.
+fn reference(
+    args: &StudyArgs,
+    ref_time: f64,
+    opts: &output::OutputOptions,
+    progress: &mut Progress,
+) -> anyhow::Result<(Reference, String)> {
+    if let Some(p) = &args.reference {
+        anyhow::ensure!(
+            !p.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")),
+            "{}: EXR references are not supported yet; pass a reference.bin written \
+             by `brume study`",
+            p.display()
+        );
+        return Ok((Reference::load(p)?, p.display().to_string()));
+    }
+    let mut sets = args.scene.sets.clone();
+    if args.reference_sets.is_empty() {
+        sets.push("integrator.volume=cylinder".into());
+    } else {
+        sets.extend(args.reference_sets.iter().cloned());
+    }
+    let r = study::render_reference(&args.scene.scene, &sets, ref_time, args.seed, |t| {
+        progress.set(((t.min(ref_time)) * 10.0) as u64, "reference");
+    })?;
+    let path = args.dir.join("reference.bin");
+    r.save(&path)?;
+    output::write(&args.dir.join("reference.png"), &image_of(&r), opts)?;
+    Ok((r, format!("{} ({})", path.display(), sets.join(" "))))
+}
+
+/// Every variant's runs, with progress; the first run of each is saved as PNG.
+fn run_variants(
+    args: &StudyArgs,
+    cfg: &StudyConfig,
+    reference: &Reference,
+    opts: &output::OutputOptions,
+    offset: f64,
+    progress: &mut Progress,
+) -> anyhow::Result<(Vec<study::Row>, study::InvalidVariants)> {
+    let mut done_runs = 0usize;
+    let mut write_err: Option<anyhow::Error> = None;
+    let result = study::run_study(cfg, reference, |ev| match ev {
+        Event::Pass {
+            variant,
+            run,
+            seconds,
+        } => {
+            let t = offset + args.time * done_runs as f64 + seconds.min(args.time);
+            progress.set(
+                (t * 10.0) as u64,
+                &format!("{} run {}", variant.label, run + 1),
+            );
+        }
+        Event::RunDone {
+            variant,
+            run,
+            image,
+        } => {
+            done_runs += 1;
+            if run == 0 {
+                let p = args.dir.join(format!("{}.png", slug(&variant.label)));
+                if let Err(e) = output::write(&p, image, opts) {
+                    write_err.get_or_insert(e.into());
+                }
+            }
+        }
+        Event::Invalid { variant, message } => {
+            done_runs += args.runs as usize;
+            eprintln!("brume: variant {} skipped: {message}", variant.label);
+        }
+    })?;
+    match write_err {
+        Some(e) => Err(e),
+        None => Ok(result),
+    }
+}
+
+/// study.csv, summary.json and the two plots.
+fn write_results(
+    dir: &Path,
+    variants: &[study::Variant],
+    rows: &[study::Row],
+    summary: &study::Summary,
+) -> anyhow::Result<()> {
+    study::write_csv(&dir.join("study.csv"), variants, rows)?;
+    let json = serde_json::to_string_pretty(summary)?;
+    brume::film::atomic::replace(&dir.join("summary.json"), |tmp| std::fs::write(tmp, &json))
         .with_context(|| format!("{}: cannot write summary.json", dir.display()))?;
-    study::plot_error_vs_time(&dir.join("error-vs-time.svg"), &variants, &rows)?;
+    study::plot_error_vs_time(&dir.join("error-vs-time.svg"), variants, rows)?;
     study::plot_efficiency(
         &dir.join("efficiency-vs-q.svg"),
-        &variants,
+        variants,
         &summary.variants,
         "integrator.q",
     )?;
-    print_table(&summary, &dir);
-    Ok(ExitCode::SUCCESS)
+    Ok(())
 }
 
 fn image_of(r: &Reference) -> brume::film::SpectralImage {

@@ -1,6 +1,10 @@
-//! Chromatic adaptation (von Kries scaling in a cone-like space).
+//! Chromatic adaptation (von Kries scaling in a cone-like space). palette adapts between white
+//! points known as types; brume's whites come at run time (an illuminant's measured white), and
+//! palette has no CAT02, so the von Kries step is written here on palette's matrix algebra.
 
 use serde::{Deserialize, Serialize};
+
+use palette::lms::matrix::{Bradford, XyzToLms};
 
 use super::matrix::{self, Mat3};
 
@@ -15,12 +19,13 @@ pub enum Cat {
     Cat02,
 }
 
-const BRADFORD: Mat3 = [
-    [0.8951, 0.2664, -0.1614],
-    [-0.7502, 1.7135, 0.0367],
-    [0.0389, -0.0685, 1.0296],
-];
+/// Bradford's cone responses, as palette defines them (Lam 1985).
+fn bradford() -> Mat3 {
+    let m = <Bradford as XyzToLms<f64>>::xyz_to_lms_matrix();
+    [[m[0], m[1], m[2]], [m[3], m[4], m[5]], [m[6], m[7], m[8]]]
+}
 
+/// CAT02 (CIE 159:2004), which palette does not define.
 const CAT02: Mat3 = [
     [0.7328, 0.4296, -0.1624],
     [-0.7036, 1.6975, 0.0061],
@@ -30,7 +35,7 @@ const CAT02: Mat3 = [
 impl Cat {
     fn cone(self) -> Mat3 {
         match self {
-            Cat::Bradford => BRADFORD,
+            Cat::Bradford => bradford(),
             Cat::Cat02 => CAT02,
         }
     }

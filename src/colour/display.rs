@@ -1,22 +1,19 @@
 //! Display encoding: exposure, view transform and the sRGB transfer function.
 
+use palette::encoding::{FromLinear, IntoLinear, Srgb};
+
 use super::ViewTransform;
 
-/// The exact sRGB (IEC 61966-2-1) encoding of a display-linear value in [0, 1].
+/// The exact sRGB (IEC 61966-2-1) encoding of a display-linear value in [0, 1] (palette's,
+/// which has no approximation for f32 -> f32; it equals the textbook formula bit for bit on
+/// every f32 in [0, 1]).
 pub fn srgb_encode(v: f32) -> f32 {
-    if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    }
+    <Srgb as FromLinear<f32, f32>>::from_linear(v)
 }
 
+/// The exact sRGB decoding (within 2 ulp of the textbook formula's rounding).
 pub fn srgb_decode(v: f32) -> f32 {
-    if v <= 0.040_45 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
+    <Srgb as IntoLinear<f32, f32>>::into_linear(v)
 }
 
 /// Middle grey, which the filmic curve leaves in place (scene 0.18 -> display 0.18).
@@ -67,6 +64,30 @@ impl ViewTransform {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The textbook piecewise formula, which palette's encoding must reproduce exactly (the
+    /// PNG's 8-bit codes depend on it).
+    fn textbook_encode(v: f32) -> f32 {
+        if v <= 0.003_130_8 {
+            12.92 * v
+        } else {
+            1.055 * v.powf(1.0 / 2.4) - 0.055
+        }
+    }
+
+    #[test]
+    fn srgb_encoding_equals_the_textbook_formula_bit_for_bit() {
+        // Every 97th f32 in [0, 1] (11 million values), both branches and the knee.
+        let one = 1.0f32.to_bits();
+        for bits in (0..=one).step_by(97).chain([one, 0.003_130_8f32.to_bits()]) {
+            let v = f32::from_bits(bits);
+            assert_eq!(
+                srgb_encode(v).to_bits(),
+                textbook_encode(v).to_bits(),
+                "{v:e}"
+            );
+        }
+    }
 
     #[test]
     fn srgb_transfer_known_values_and_inverse() {

@@ -1,28 +1,48 @@
-//! 3x3 matrices in f64 (row-major), enough linear algebra for colour-space conversions.
+//! 3x3 matrices in f64 (row-major) for colour-space conversions: products and XYZ / xyY
+//! conversions through palette (the same operations in the same order as before, so the same
+//! bits), the inverse by brume's cofactors (see `invert`).
+
+use palette::convert::{Convert, FromColorUnclamped};
+use palette::white_point::Any;
+use palette::{Xyz, Yxy};
 
 pub type Mat3 = [[f64; 3]; 3];
 
 pub const IDENTITY: Mat3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
+/// A linear map of 3-vectors in palette's terms (the colour types only tag the arrays).
+type Linear = palette::convert::Matrix3<Xyz<Any, f64>, Xyz<Any, f64>>;
+
+fn to_palette(m: &Mat3) -> Linear {
+    Linear::from_array([
+        m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
+    ])
+}
+
+fn from_palette(m: Linear) -> Mat3 {
+    let a = m.into_array();
+    [[a[0], a[1], a[2]], [a[3], a[4], a[5]], [a[6], a[7], a[8]]]
+}
+
+/// The product `a b` (apply `b` first).
 pub fn mul(a: &Mat3, b: &Mat3) -> Mat3 {
-    let mut m = [[0.0; 3]; 3];
-    for (i, row) in m.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = (0..3).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    m
+    from_palette(to_palette(b).then(to_palette(a)))
 }
 
 pub fn apply(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+    let out = to_palette(m).convert(Xyz::new(v[0], v[1], v[2]));
+    [out.x, out.y, out.z]
 }
 
 pub fn diag(v: [f64; 3]) -> Mat3 {
     [[v[0], 0.0, 0.0], [0.0, v[1], 0.0], [0.0, 0.0, v[2]]]
 }
 
-/// Inverse by cofactors; the colour matrices brume inverts are all well conditioned.
+/// The inverse, by cofactors divided by the determinant. Not palette's `invert`, which multiplies
+/// by the determinant's reciprocal: that moves the last bits of the XYZ -> RGB matrices, and the
+/// shipped RGB -> spectrum table (fitted through them, and so every rendered RGB material) is
+/// checked to equal a fresh fit (`tests/spectrum_rgb_table.rs`). The matrices inverted are all
+/// fixed in the code (primaries, cone responses) and well conditioned.
 pub fn invert(m: &Mat3) -> Mat3 {
     let c =
         |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
@@ -44,16 +64,14 @@ pub fn invert(m: &Mat3) -> Mat3 {
 
 /// XYZ (with Y = 1) of a chromaticity.
 pub fn xy_to_xyz(xy: [f64; 2]) -> [f64; 3] {
-    [xy[0] / xy[1], 1.0, (1.0 - xy[0] - xy[1]) / xy[1]]
+    let xyz = Xyz::<Any, f64>::from_color_unclamped(Yxy::new(xy[0], xy[1], 1.0));
+    [xyz.x, xyz.y, xyz.z]
 }
 
+/// Chromaticity of an XYZ colour ((0, 0) for black).
 pub fn xyz_to_xy(xyz: [f64; 3]) -> [f64; 2] {
-    let s = xyz[0] + xyz[1] + xyz[2];
-    if s == 0.0 {
-        [0.0, 0.0]
-    } else {
-        [xyz[0] / s, xyz[1] / s]
-    }
+    let c = Yxy::<Any, f64>::from_color_unclamped(Xyz::new(xyz[0], xyz[1], xyz[2]));
+    [c.x, c.y]
 }
 
 /// The RGB -> XYZ matrix of an RGB space (its "normalised primary matrix"): columns are the

@@ -1,19 +1,22 @@
-//! Colour science: spectrum -> CIE XYZ -> working space, chromatic adaptation, display encoding.
+//! Colour science: spectrum -> CIE XYZ -> working space, chromatic adaptation, display
+//! encoding, and the way back (RGB -> spectrum, `rgb`).
 
 use serde::{Deserialize, Serialize};
 
 mod adapt;
-pub mod cli;
 mod convert;
+pub mod describe;
 mod display;
 pub mod matrix;
 mod observer;
+pub mod rgb;
 mod space;
 
 pub use adapt::Cat;
 pub use convert::FilmToRgb;
 pub use display::{srgb_decode, srgb_encode};
 pub use observer::{Cmfs, XyzWeights};
+pub use rgb::{RgbKind, rgb_to_spectrum};
 pub use space::{ACES_XY, AP1_PRIMARIES, D65_XY, E_XY, REC709_PRIMARIES, XYZ_PRIMARIES};
 
 use crate::spectrum::SpectrumError;

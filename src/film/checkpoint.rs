@@ -3,21 +3,35 @@
 //!
 //! Layout (little-endian): magic `BRUMEFLM`, format version (u32), seed, scene hash, first
 //! pass, passes, dropped (u64 each), width, height, bins (u32), lambda min and max (f64), the
-//! length of a UTF-8 metadata text (u32) and the text, the sums and sums of squares (i128 each),
-//! and an FNV-1a 64 checksum of everything before it, so a truncated or damaged file is refused.
+//! length of a UTF-8 JSON text (u32) and the text (the render's identity: scene description
+//! and sampling settings, see [`FilmId`]), the sums and sums of squares (i128 each), and an
+//! FNV-1a 64 checksum of everything before it, so a truncated or damaged file is refused.
+//!
+//! Reading checks the size the header announces against the file's size before reading the
+//! data, so a damaged header cannot make brume allocate without bound, and a file can be
+//! inspected ([`read_header`]) without loading its sums.
 
-use std::io::{BufWriter, Read, Write};
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
 
 use crate::spectrum::SpectralGrid;
 
-use super::{Film, LAYERS};
+use super::identity::{self, Fnv, Sampling};
+use super::{Film, FilmId, LAYERS, atomic};
 
 const MAGIC: &[u8; 8] = b"BRUMEFLM";
-pub const VERSION: u32 = 1;
-/// Films larger than this many values are refused on reading (a damaged header must not make
-/// brume allocate without bound).
-const MAX_VALUES: u64 = 1 << 34;
+/// Version 2 added the identity JSON (description and sampling settings).
+pub const VERSION: u32 = 2;
+/// Films larger than this many values (pixels x bins) are refused on reading: 2^32 values are
+/// 206 GB of sums, beyond any machine brume runs on.
+pub const MAX_VALUES: u64 = 1 << 32;
+/// Longest identity text accepted (a scene description is kilobytes).
+const MAX_IDENTITY: u32 = 1 << 26;
+/// Bytes before the identity text.
+const FIXED_HEADER: u64 = 8 + 4 + 5 * 8 + 3 * 4 + 2 * 8 + 4;
 
 /// A film with what identifies the render it belongs to.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,15 +40,32 @@ pub struct FilmFile {
     pub id: FilmId,
 }
 
-/// What identifies the render a film belongs to.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct FilmId {
-    pub seed: u64,
-    /// Hash of the scene description (see `scene::identity_hash`): parts and checkpoints of
-    /// another scene are refused.
-    pub scene_hash: u64,
-    /// Free text for the caller (brume stores the scene's output settings as JSON).
-    pub meta: String,
+/// A film file's header: everything but the sums.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmHeader {
+    pub id: FilmId,
+    pub width: usize,
+    pub height: usize,
+    pub grid: SpectralGrid,
+    pub first: u64,
+    pub passes: u64,
+    pub dropped: u64,
+    /// Size of the whole file in bytes (what reading it allocates, about).
+    pub file_bytes: u64,
+}
+
+impl FilmHeader {
+    /// The pass index after the last one in the file.
+    pub fn end(&self) -> u64 {
+        self.first + self.passes
+    }
+}
+
+/// The identity as stored: JSON, readable with any tool.
+#[derive(Serialize, Deserialize)]
+struct StoredIdentity {
+    description: serde_json::Value,
+    sampling: Sampling,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -50,25 +81,6 @@ pub enum FilmFileError {
     Version { path: PathBuf, found: u32 },
     #[error("{path}: damaged or truncated film file ({what})")]
     Damaged { path: PathBuf, what: &'static str },
-}
-
-/// FNV-1a 64: a small, stable hash (the same on every machine and build).
-#[derive(Clone, Copy, Debug)]
-pub struct Fnv(pub u64);
-
-impl Default for Fnv {
-    fn default() -> Self {
-        Fnv(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fnv {
-    pub fn update(&mut self, bytes: &[u8]) {
-        for b in bytes {
-            self.0 ^= *b as u64;
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
 }
 
 /// Writer that hashes what passes through it.
@@ -88,159 +100,243 @@ impl<W: Write> Write for Hashing<W> {
     }
 }
 
-/// Writes `film` to `path` atomically (temporary name in the same folder, synced, renamed).
+/// Writes `film` to `path` atomically (see [`atomic::replace`]).
 pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError> {
-    let io = |source| FilmFileError::Io {
+    let identity = serde_json::to_vec(&StoredIdentity {
+        description: id.description.clone(),
+        sampling: id.sampling.clone(),
+    })
+    .map_err(|e| FilmFileError::Io {
         path: path.to_path_buf(),
-        source,
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let f = std::fs::File::create(&tmp)?;
+        source: e.into(),
+    })?;
+    atomic::replace(path, |tmp| {
         let mut w = Hashing {
-            inner: BufWriter::with_capacity(1 << 20, f),
+            inner: BufWriter::with_capacity(1 << 20, File::create(tmp)?),
             hash: Fnv::default(),
         };
-        encode(&mut w, film, id)?;
+        encode(&mut w, film, id, &identity)?;
         let sum = w.hash.0;
         w.inner.write_all(&sum.to_le_bytes())?;
-        let f = w.inner.into_inner().map_err(|e| e.into_error())?;
-        f.sync_all()
-    })();
-    if let Err(e) = result.and_then(|_| std::fs::rename(&tmp, path)) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(io(e));
-    }
-    Ok(())
+        w.inner.flush()
+    })
+    .map_err(|source| FilmFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
-fn encode(w: &mut impl Write, f: &Film, file: &FilmId) -> std::io::Result<()> {
+fn encode(w: &mut impl Write, f: &Film, id: &FilmId, identity: &[u8]) -> std::io::Result<()> {
     w.write_all(MAGIC)?;
     w.write_all(&VERSION.to_le_bytes())?;
-    for v in [file.seed, file.scene_hash, f.first, f.passes, f.dropped] {
+    for v in [id.seed, id.scene_hash, f.first, f.passes, f.dropped] {
         w.write_all(&v.to_le_bytes())?;
     }
     for v in [f.width, f.height, f.grid.n] {
-        w.write_all(&(v as u32).to_le_bytes())?;
+        let v = u32::try_from(v).map_err(|_| std::io::Error::other("film too large"))?;
+        w.write_all(&v.to_le_bytes())?;
     }
     w.write_all(&f.grid.lambda_min.to_le_bytes())?;
     w.write_all(&f.grid.lambda_max.to_le_bytes())?;
-    w.write_all(&(file.meta.len() as u32).to_le_bytes())?;
-    w.write_all(file.meta.as_bytes())?;
+    let len = u32::try_from(identity.len()).map_err(|_| std::io::Error::other("identity"))?;
+    w.write_all(&len.to_le_bytes())?;
+    w.write_all(identity)?;
     for v in f.sum.iter().chain(&f.sum_sq) {
         w.write_all(&v.to_le_bytes())?;
     }
     Ok(())
 }
 
-/// Reads and checks a film file written by `write`.
-pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
-    let io = |source| FilmFileError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let damaged = |what| FilmFileError::Damaged {
+/// Reader that hashes what it reads, with the file's errors mapped to [`FilmFileError`].
+struct Source<'a> {
+    inner: BufReader<File>,
+    hash: Fnv,
+    path: &'a Path,
+}
+
+impl Source<'_> {
+    fn bytes<const N: usize>(&mut self) -> Result<[u8; N], FilmFileError> {
+        let mut b = [0u8; N];
+        self.fill(&mut b)?;
+        Ok(b)
+    }
+    fn fill(&mut self, b: &mut [u8]) -> Result<(), FilmFileError> {
+        self.inner.read_exact(b).map_err(|e| self.fail(e))?;
+        self.hash.update(b);
+        Ok(())
+    }
+    fn u64(&mut self) -> Result<u64, FilmFileError> {
+        self.bytes().map(u64::from_le_bytes)
+    }
+    fn u32(&mut self) -> Result<u32, FilmFileError> {
+        self.bytes().map(u32::from_le_bytes)
+    }
+    fn fail(&self, e: std::io::Error) -> FilmFileError {
+        if e.kind() == std::io::ErrorKind::UnexpectedEof {
+            damaged(self.path, "truncated")
+        } else {
+            FilmFileError::Io {
+                path: self.path.to_path_buf(),
+                source: e,
+            }
+        }
+    }
+}
+
+fn damaged(path: &Path, what: &'static str) -> FilmFileError {
+    FilmFileError::Damaged {
         path: path.to_path_buf(),
         what,
-    };
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_to_end(&mut bytes))
-        .map_err(io)?;
-    if bytes.len() < 12 || &bytes[..8] != MAGIC {
+    }
+}
+
+/// Fixed fields read before the identity text; the text is parsed once the checksum is known
+/// to be right, so a damaged file reports damage rather than a confusing parse error.
+struct Raw {
+    seed: u64,
+    scene_hash: u64,
+    first: u64,
+    passes: u64,
+    dropped: u64,
+    width: usize,
+    height: usize,
+    grid: SpectralGrid,
+    identity: Vec<u8>,
+    values: usize,
+    file_bytes: u64,
+}
+
+fn open(path: &Path) -> Result<Source<'_>, FilmFileError> {
+    let f = File::open(path).map_err(|source| FilmFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(Source {
+        inner: BufReader::with_capacity(1 << 20, f),
+        hash: Fnv::default(),
+        path,
+    })
+}
+
+fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
+    let path = src.path;
+    let file_bytes = src
+        .inner
+        .get_ref()
+        .metadata()
+        .map_err(|e| src.fail(e))?
+        .len();
+    let head: [u8; 12] = src.bytes().map_err(|_| FilmFileError::Magic {
+        path: path.to_path_buf(),
+    })?;
+    if &head[..8] != MAGIC {
         return Err(FilmFileError::Magic {
             path: path.to_path_buf(),
         });
     }
-    let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap_or_default());
-    if version != VERSION {
-        return Err(FilmFileError::Version {
-            path: path.to_path_buf(),
-            found: version,
-        });
+    let found = u32::from_le_bytes([head[8], head[9], head[10], head[11]]);
+    if found != VERSION {
+        let path = path.to_path_buf();
+        return Err(FilmFileError::Version { path, found });
     }
-    if bytes.len() < 20 {
-        return Err(damaged("too short"));
+    let [seed, scene_hash, first, passes, dropped] = [(); 5].map(|()| src.u64());
+    let [width, height, n] = [(); 3].map(|()| src.u32());
+    let (lambda_min, lambda_max) = (src.u64()?, src.u64()?);
+    let identity_len = src.u32()?;
+    if identity_len > MAX_IDENTITY {
+        return Err(damaged(path, "absurd identity size"));
     }
-    let (body, tail) = bytes.split_at(bytes.len() - 8);
-    let mut h = Fnv::default();
-    h.update(body);
-    if h.0.to_le_bytes() != tail {
-        return Err(damaged("checksum mismatch"));
-    }
-    let mut r = Reader { b: body, at: 12 };
-    let short = || damaged("header too short");
-    let seed = r.u64().ok_or_else(short)?;
-    let scene_hash = r.u64().ok_or_else(short)?;
-    let first = r.u64().ok_or_else(short)?;
-    let passes = r.u64().ok_or_else(short)?;
-    let dropped = r.u64().ok_or_else(short)?;
-    let width = r.u32().ok_or_else(short)? as usize;
-    let height = r.u32().ok_or_else(short)? as usize;
-    let n = r.u32().ok_or_else(short)? as usize;
-    let lambda_min = f64::from_bits(r.u64().ok_or_else(short)?);
-    let lambda_max = f64::from_bits(r.u64().ok_or_else(short)?);
-    let meta_len = r.u32().ok_or_else(short)? as usize;
-    let meta = r.take(meta_len).ok_or_else(short)?;
-    let meta = String::from_utf8(meta.to_vec()).map_err(|_| damaged("metadata is not UTF-8"))?;
-    let px = (width as u64)
-        .checked_mul(height as u64)
-        .and_then(|v| v.checked_mul(n as u64))
+    let (width, height, n) = (width? as u64, height? as u64, n? as u64);
+    let values = (width * height)
+        .checked_mul(n)
         .filter(|v| *v <= MAX_VALUES)
-        .ok_or_else(|| damaged("absurd film size"))? as usize;
-    if r.b.len() - r.at != (LAYERS + 1) * px * 16 {
-        return Err(damaged("data size does not match the header"));
+        .ok_or_else(|| damaged(path, "absurd film size"))?;
+    let data = (LAYERS as u64 + 1) * values * 16;
+    if FIXED_HEADER + identity_len as u64 + data + 8 != file_bytes {
+        return Err(damaged(path, "file size does not match the header"));
     }
-    let mut values = r.b[r.at..]
-        .chunks_exact(16)
-        .map(|c| i128::from_le_bytes(c.try_into().unwrap_or_default()));
-    let sum: Vec<i128> = values.by_ref().take(LAYERS * px).collect();
-    let sum_sq: Vec<i128> = values.collect();
-    let film = Film {
-        width,
-        height,
+    let mut identity = vec![0u8; identity_len as usize];
+    src.fill(&mut identity)?;
+    Ok(Raw {
+        seed: seed?,
+        scene_hash: scene_hash?,
+        first: first?,
+        passes: passes?,
+        dropped: dropped?,
+        width: width as usize,
+        height: height as usize,
         grid: SpectralGrid {
-            n,
-            lambda_min,
-            lambda_max,
+            n: n as usize,
+            lambda_min: f64::from_bits(lambda_min),
+            lambda_max: f64::from_bits(lambda_max),
         },
-        first,
-        passes,
-        sum,
-        sum_sq,
-        dropped,
-    };
-    Ok(FilmFile {
-        film,
-        id: FilmId {
-            seed,
-            scene_hash,
-            meta,
-        },
+        identity,
+        values: values as usize,
+        file_bytes,
     })
 }
 
-struct Reader<'a> {
-    b: &'a [u8],
-    at: usize,
+fn header(raw: Raw, path: &Path) -> Result<FilmHeader, FilmFileError> {
+    let stored: StoredIdentity =
+        serde_json::from_slice(&raw.identity).map_err(|_| damaged(path, "unreadable identity"))?;
+    let id = FilmId::from_parts(raw.seed, stored.description, stored.sampling);
+    if id.scene_hash != raw.scene_hash || identity::hash(&id.description) != raw.scene_hash {
+        return Err(damaged(path, "scene hash does not match the description"));
+    }
+    Ok(FilmHeader {
+        id,
+        width: raw.width,
+        height: raw.height,
+        grid: raw.grid,
+        first: raw.first,
+        passes: raw.passes,
+        dropped: raw.dropped,
+        file_bytes: raw.file_bytes,
+    })
 }
 
-impl<'a> Reader<'a> {
-    fn take(&mut self, n: usize) -> Option<&'a [u8]> {
-        let s = self.b.get(self.at..self.at.checked_add(n)?)?;
-        self.at += n;
-        Some(s)
+/// Reads a film file's header without its sums (cheap whatever the film's size). The checksum
+/// covers the whole file and is checked by [`read`] only.
+pub fn read_header(path: &Path) -> Result<FilmHeader, FilmFileError> {
+    let raw = read_raw(&mut open(path)?)?;
+    header(raw, path)
+}
+
+/// Reads and checks a film file written by [`write`].
+pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
+    let mut src = open(path)?;
+    let raw = read_raw(&mut src)?;
+    let values = raw.values;
+    let mut sums = Vec::with_capacity((LAYERS + 1) * values);
+    let mut buf = vec![0u8; 1 << 16];
+    while sums.len() < (LAYERS + 1) * values {
+        let left = ((LAYERS + 1) * values - sums.len()) * 16;
+        let chunk = &mut buf[..left.min(1 << 16)];
+        src.fill(chunk)?;
+        sums.extend(
+            chunk
+                .chunks_exact(16)
+                .map(|c| i128::from_le_bytes(c.try_into().unwrap_or_default())),
+        );
     }
-    fn u64(&mut self) -> Option<u64> {
-        Some(u64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    let computed = src.hash.0;
+    let stored = src.u64()?;
+    if computed != stored {
+        return Err(damaged(path, "checksum mismatch"));
     }
-    fn u32(&mut self) -> Option<u32> {
-        Some(u32::from_le_bytes(self.take(4)?.try_into().ok()?))
-    }
+    let h = header(raw, path)?;
+    let sum_sq = sums.split_off(LAYERS * values);
+    let film = Film {
+        width: h.width,
+        height: h.height,
+        grid: h.grid,
+        first: h.first,
+        passes: h.passes,
+        sum: sums,
+        sum_sq,
+        dropped: h.dropped,
+    };
+    Ok(FilmFile { film, id: h.id })
 }
 
 #[cfg(test)]
@@ -263,14 +359,13 @@ mod tests {
         film.add_pass(&b);
         film.add_pass(&b);
         film.dropped = 5;
-        FilmFile {
-            film,
-            id: FilmId {
-                seed: 42,
-                scene_hash: 0xdead_beef,
-                meta: "{\"x\":1}".into(),
-            },
-        }
+        let sampling = Sampling {
+            gather_budget: 1 << 30,
+            machine_memory: 1 << 34,
+            version: "0.1.0".into(),
+        };
+        let id = FilmId::new(&serde_json::json!({"x": 1}), 42, sampling).unwrap();
+        FilmFile { film, id }
     }
 
     #[test]
@@ -280,6 +375,10 @@ mod tests {
         let f = sample();
         write(&p, &f.film, &f.id).unwrap();
         assert_eq!(read(&p).unwrap(), f);
+        let h = read_header(&p).unwrap();
+        assert_eq!((h.first, h.end(), h.dropped), (7, 9, 5));
+        assert_eq!(h.id, f.id);
+        assert_eq!(h.file_bytes, std::fs::metadata(&p).unwrap().len());
     }
 
     #[test]
@@ -300,5 +399,20 @@ mod tests {
             std::fs::write(&p, &bad).unwrap();
             assert!(read(&p).is_err(), "flipped byte {i}");
         }
+    }
+
+    #[test]
+    fn a_header_announcing_a_huge_film_is_refused_before_allocating() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("a.brume");
+        let f = sample();
+        write(&p, &f.film, &f.id).unwrap();
+        let mut bytes = std::fs::read(&p).unwrap();
+        // width = height = 2^31: 2^62 pixels.
+        let at = 8 + 4 + 5 * 8;
+        bytes[at..at + 8].copy_from_slice(&[0, 0, 0, 0x80, 0, 0, 0, 0x80]);
+        std::fs::write(&p, &bytes).unwrap();
+        let err = read(&p).unwrap_err().to_string();
+        assert!(err.contains("absurd film size"), "{err}");
     }
 }

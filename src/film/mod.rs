@@ -1,12 +1,16 @@
-//! The film: per-pixel spectral accumulation, statistics across passes, and image output.
+//! The film: per-pixel spectral accumulation, statistics across passes, the film file and
+//! what identifies a render, and image output.
 
 mod accum;
+pub mod atomic;
 pub mod checkpoint;
 mod chunk;
+mod identity;
 mod image;
 pub mod output;
 
 pub use accum::{Film, LAYERS, Layer, MAX_SAMPLE, MergeError, PassBuffer};
-pub use checkpoint::{FilmFile, FilmFileError, FilmId};
+pub use checkpoint::{FilmFile, FilmFileError, FilmHeader};
 pub use chunk::ChunkSplats;
+pub use identity::{Difference, FilmId, IdentityError, Mismatch, PER_RUN_KEYS, Sampling};
 pub use image::SpectralImage;

@@ -1,7 +1,7 @@
 //! Image writers. The output format follows the file extension: `.exr` (scene-linear, in the
 //! chosen working space, optionally with spectral and noise layers) or `.png` (display-referred
-//! sRGB). Files are written to a temporary name beside the target and renamed, so an existing
-//! output is never left half-written.
+//! sRGB). Files are written atomically (`atomic::replace`), so an existing output is never left
+//! half-written.
 
 mod exr;
 mod png;
@@ -69,19 +69,14 @@ pub fn write(path: &Path, img: &SpectralImage, opts: &OutputOptions) -> Result<(
         message,
     };
     check_sizes(img).map_err(werr)?;
-    let tmp = temp_name(path);
-    let result = match format {
-        Format::Exr => exr::write(&tmp, img, opts),
-        Format::Png => png::write(&tmp, img, opts),
-    };
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(werr(e));
-    }
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        werr(e.to_string())
+    super::atomic::replace(path, |tmp| {
+        match format {
+            Format::Exr => exr::write(tmp, img, opts),
+            Format::Png => png::write(tmp, img, opts),
+        }
+        .map_err(std::io::Error::other)
     })
+    .map_err(|e| werr(e.to_string()))
 }
 
 /// Converts every pixel of `data` (the image's layout) to RGB in `space`.
@@ -122,17 +117,4 @@ fn check_sizes(img: &SpectralImage) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-fn temp_name(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    // Keep the extension last: some writers infer the format from it.
-    path.with_file_name(format!(".{name}.{}.tmp.{ext}", std::process::id()))
 }

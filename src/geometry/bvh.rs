@@ -61,72 +61,137 @@ pub struct Geometry {
     samplers: Vec<AreaSampler>,
 }
 
+/// The primitives of the shapes added so far: world triangles, analytic shapes, and each
+/// shape's area and area sampler.
+#[derive(Default)]
+struct Parts {
+    world: Vec<WorldTri>,
+    tri_shape: Vec<u32>,
+    analytic: Vec<Analytic>,
+    areas: Vec<f32>,
+    samplers: Vec<AreaSampler>,
+}
+
+impl Parts {
+    /// Adds shape `i`, checking its parameters.
+    fn add(&mut self, i: usize, desc: &ShapeDesc) -> Result<(), GeometryError> {
+        let bad = |message: &str| GeometryError::InvalidShape {
+            shape: i,
+            message: message.into(),
+        };
+        if !desc.transform.is_valid() {
+            return Err(bad("transform is singular or not finite"));
+        }
+        let positive = |v: &[f32]| v.iter().all(|x| *x > 0.0 && x.is_finite());
+        let analytic = match desc.kind {
+            ShapeKind::Sphere { radius } => Some(AnalyticKind::Sphere { radius }),
+            ShapeKind::Disc { radius } => Some(AnalyticKind::Disc { radius }),
+            ShapeKind::Quad { size } if !positive(&size.to_array()) => {
+                return Err(bad("size must be positive and finite"));
+            }
+            ShapeKind::Box { size } if !positive(&size.to_array()) => {
+                return Err(bad("size must be positive and finite"));
+            }
+            ShapeKind::Quad { .. } | ShapeKind::Box { .. } | ShapeKind::Mesh { .. } => None,
+        };
+        match analytic {
+            Some(kind) => self.add_analytic(i, desc, kind).map_err(bad),
+            None => self.add_triangles(i, desc),
+        }
+    }
+
+    fn add_analytic(
+        &mut self,
+        i: usize,
+        desc: &ShapeDesc,
+        kind: AnalyticKind,
+    ) -> Result<(), &'static str> {
+        let radius = match kind {
+            AnalyticKind::Sphere { radius } | AnalyticKind::Disc { radius } => radius,
+        };
+        if !(radius > 0.0 && radius.is_finite()) {
+            return Err("radius must be positive");
+        }
+        let a = Analytic {
+            kind,
+            transform: desc.transform,
+            shape: i as u32,
+        };
+        self.areas.push(analytic_area(&a));
+        self.samplers
+            .push(AreaSampler::Analytic(self.analytic.len() as u32));
+        self.analytic.push(a);
+        Ok(())
+    }
+
+    fn add_triangles(&mut self, i: usize, desc: &ShapeDesc) -> Result<(), GeometryError> {
+        let first = self.world.len();
+        tessellate(i, desc, &mut self.world)?;
+        let mut total = 0.0f32;
+        let mut cdf = Vec::with_capacity(self.world.len() - first);
+        for t in &self.world[first..] {
+            total += 0.5 * (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).length();
+            cdf.push(total);
+        }
+        self.tri_shape.resize(self.world.len(), i as u32);
+        self.areas.push(total);
+        self.samplers.push(if cdf.is_empty() {
+            AreaSampler::Empty
+        } else {
+            AreaSampler::Triangles {
+                first: first as u32,
+                cdf,
+            }
+        });
+        Ok(())
+    }
+}
+
+/// The wide BVH over the triangles then the analytic shapes (their primitive ids in that
+/// order), and the bounds of everything.
+fn build_bvh(world: &[WorldTri], analytic: &[Analytic]) -> (Option<CwBvh>, Aabb) {
+    let mut boxes: Vec<BvhAabb> = world
+        .iter()
+        .map(|t| {
+            let lo = t.v[0].min(t.v[1]).min(t.v[2]);
+            let hi = t.v[0].max(t.v[1]).max(t.v[2]);
+            let pad = bvh_pad(lo, hi);
+            BvhAabb::new((lo - pad).into(), (hi + pad).into())
+        })
+        .collect();
+    boxes.extend(analytic.iter().map(|a| {
+        let (lo, hi) = a.bounds();
+        let pad = bvh_pad(lo, hi);
+        BvhAabb::new((lo - pad).into(), (hi + pad).into())
+    }));
+    let mut bounds = Aabb::EMPTY;
+    for b in &boxes {
+        bounds.grow(b.min.into());
+        bounds.grow(b.max.into());
+    }
+    let bvh = (!boxes.is_empty()).then(|| {
+        build_cwbvh(
+            &boxes,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        )
+    });
+    (bvh, bounds)
+}
+
 impl Geometry {
     pub fn new(shapes: Vec<ShapeDesc>) -> Result<Geometry, GeometryError> {
-        let mut world: Vec<WorldTri> = Vec::new();
-        let mut tri_shape = Vec::new();
-        let mut analytic = Vec::new();
-        let mut areas = Vec::with_capacity(shapes.len());
-        let mut samplers = Vec::with_capacity(shapes.len());
+        let mut parts = Parts::default();
         for (i, desc) in shapes.iter().enumerate() {
-            let bad = |message: &str| GeometryError::InvalidShape {
-                shape: i,
-                message: message.into(),
-            };
-            if !desc.transform.is_valid() {
-                return Err(bad("transform is singular or not finite"));
-            }
-            let first = world.len();
-            match desc.kind {
-                ShapeKind::Sphere { radius } | ShapeKind::Disc { radius } => {
-                    if !(radius > 0.0 && radius.is_finite()) {
-                        return Err(bad("radius must be positive"));
-                    }
-                    let kind = match desc.kind {
-                        ShapeKind::Sphere { .. } => AnalyticKind::Sphere { radius },
-                        _ => AnalyticKind::Disc { radius },
-                    };
-                    let a = Analytic {
-                        kind,
-                        transform: desc.transform,
-                        shape: i as u32,
-                    };
-                    areas.push(analytic_area(&a));
-                    samplers.push(AreaSampler::Analytic(analytic.len() as u32));
-                    analytic.push(a);
-                }
-                _ => {
-                    let ok = match desc.kind {
-                        ShapeKind::Quad { size } => {
-                            size.cmpgt(Vec2::ZERO).all() && size.is_finite()
-                        }
-                        ShapeKind::Box { size } => size.cmpgt(Vec3::ZERO).all() && size.is_finite(),
-                        _ => true,
-                    };
-                    if !ok {
-                        return Err(bad("size must be positive and finite"));
-                    }
-                    tessellate(i, desc, &mut world)?;
-                    let mut total = 0.0f32;
-                    let mut cdf = Vec::with_capacity(world.len() - first);
-                    for t in &world[first..] {
-                        total += 0.5 * (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).length();
-                        cdf.push(total);
-                    }
-                    tri_shape.resize(world.len(), i as u32);
-                    areas.push(total);
-                    samplers.push(if cdf.is_empty() {
-                        AreaSampler::Empty
-                    } else {
-                        AreaSampler::Triangles {
-                            first: first as u32,
-                            cdf,
-                        }
-                    });
-                }
-            }
+            parts.add(i, desc)?;
         }
-
+        let Parts {
+            world,
+            tri_shape,
+            analytic,
+            areas,
+            samplers,
+        } = parts;
         let tris: Vec<TriGeom> = world
             .iter()
             .map(|t| TriGeom {
@@ -137,41 +202,13 @@ impl Geometry {
             .iter()
             .map(|t| TriShading { n: t.n, uv: t.uv })
             .collect();
-
-        let mut boxes: Vec<BvhAabb> = world
-            .iter()
-            .map(|t| {
-                let lo = t.v[0].min(t.v[1]).min(t.v[2]);
-                let hi = t.v[0].max(t.v[1]).max(t.v[2]);
-                let pad = bvh_pad(lo, hi);
-                BvhAabb::new((lo - pad).into(), (hi + pad).into())
-            })
-            .collect();
-        boxes.extend(analytic.iter().map(|a| {
-            let (lo, hi) = a.bounds();
-            let pad = bvh_pad(lo, hi);
-            BvhAabb::new((lo - pad).into(), (hi + pad).into())
-        }));
-        let mut bounds = Aabb::EMPTY;
-        for b in &boxes {
-            bounds.grow(b.min.into());
-            bounds.grow(b.max.into());
-        }
-        let bvh = (!boxes.is_empty()).then(|| {
-            build_cwbvh(
-                &boxes,
-                BvhBuildParams::medium_build(),
-                &mut Duration::default(),
-            )
-        });
-
+        let (bvh, bounds) = build_bvh(&world, &analytic);
         let slot_tris = bvh.as_ref().map_or(Vec::new(), |b| {
             b.primitive_indices
                 .iter()
                 .map(|&p| tris.get(p as usize).copied().unwrap_or(TriGeom::INVALID))
                 .collect()
         });
-
         Ok(Geometry {
             shapes,
             tris,

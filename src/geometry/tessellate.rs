@@ -36,57 +36,13 @@ pub(crate) fn tessellate(
             ];
             push_quad(&mut local, q);
         }
-        ShapeKind::Box { size } => {
-            let h = *size * 0.5;
-            // For each face: outward axis, and two in-plane axes with u x v = outward.
-            let faces = [
-                (Vec3::X, Vec3::Y, Vec3::Z),
-                (-Vec3::X, Vec3::Z, Vec3::Y),
-                (Vec3::Y, Vec3::Z, Vec3::X),
-                (-Vec3::Y, Vec3::X, Vec3::Z),
-                (Vec3::Z, Vec3::X, Vec3::Y),
-                (-Vec3::Z, Vec3::Y, Vec3::X),
-            ];
-            for (n, u, v) in faces {
-                let c = n * h;
-                let (du, dv) = (u * h, v * h);
-                push_quad(
-                    &mut local,
-                    [c - du - dv, c + du - dv, c + du + dv, c - du + dv],
-                );
-            }
-        }
+        ShapeKind::Box { size } => box_faces(*size, &mut local),
         ShapeKind::Mesh {
             positions,
             normals,
             uvs,
             indices,
-        } => {
-            let np = positions.len();
-            if normals.as_ref().is_some_and(|n| n.len() != np) {
-                return Err(bad("mesh normals count differs from positions".into()));
-            }
-            if uvs.as_ref().is_some_and(|u| u.len() != np) {
-                return Err(bad("mesh uv count differs from positions".into()));
-            }
-            for tri in indices {
-                if tri.iter().any(|&i| i as usize >= np) {
-                    return Err(bad(format!("mesh index out of range in {tri:?}")));
-                }
-                let [a, b, c] = tri.map(|i| i as usize);
-                let v = [positions[a], positions[b], positions[c]];
-                if (v[1] - v[0]).cross(v[2] - v[0]).length_squared() == 0.0 {
-                    continue; // degenerate: can never be hit, would only slow the BVH
-                }
-                local.push(WorldTri {
-                    v,
-                    n: normals.as_ref().map(|n| [n[a], n[b], n[c]]),
-                    uv: uvs
-                        .as_ref()
-                        .map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| [u[a], u[b], u[c]]),
-                });
-            }
-        }
+        } => mesh_triangles(positions, normals, uvs, indices, &mut local).map_err(bad)?,
     }
     let t = &desc.transform;
     let flip = t.flips();
@@ -105,6 +61,61 @@ pub(crate) fn tessellate(
             return Err(bad("non-finite vertex after transform".into()));
         }
         out.push(tri);
+    }
+    Ok(())
+}
+
+/// The six faces of a centred box of `size`, outward.
+fn box_faces(size: Vec3, out: &mut Vec<WorldTri>) {
+    let h = size * 0.5;
+    // For each face: outward axis, and two in-plane axes with u x v = outward.
+    let faces = [
+        (Vec3::X, Vec3::Y, Vec3::Z),
+        (-Vec3::X, Vec3::Z, Vec3::Y),
+        (Vec3::Y, Vec3::Z, Vec3::X),
+        (-Vec3::Y, Vec3::X, Vec3::Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (-Vec3::Z, Vec3::Y, Vec3::X),
+    ];
+    for (n, u, v) in faces {
+        let c = n * h;
+        let (du, dv) = (u * h, v * h);
+        push_quad(out, [c - du - dv, c + du - dv, c + du + dv, c - du + dv]);
+    }
+}
+
+/// A mesh's triangles in its local frame, checked (attribute counts, indices), degenerate ones
+/// dropped; the error says what is wrong.
+fn mesh_triangles(
+    positions: &[Vec3],
+    normals: &Option<Vec<Vec3>>,
+    uvs: &Option<Vec<Vec2>>,
+    indices: &[[u32; 3]],
+    out: &mut Vec<WorldTri>,
+) -> Result<(), String> {
+    let np = positions.len();
+    if normals.as_ref().is_some_and(|n| n.len() != np) {
+        return Err("mesh normals count differs from positions".into());
+    }
+    if uvs.as_ref().is_some_and(|u| u.len() != np) {
+        return Err("mesh uv count differs from positions".into());
+    }
+    for tri in indices {
+        if tri.iter().any(|&i| i as usize >= np) {
+            return Err(format!("mesh index out of range in {tri:?}"));
+        }
+        let [a, b, c] = tri.map(|i| i as usize);
+        let v = [positions[a], positions[b], positions[c]];
+        if (v[1] - v[0]).cross(v[2] - v[0]).length_squared() == 0.0 {
+            continue; // degenerate: can never be hit, would only slow the BVH
+        }
+        out.push(WorldTri {
+            v,
+            n: normals.as_ref().map(|n| [n[a], n[b], n[c]]),
+            uv: uvs
+                .as_ref()
+                .map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| [u[a], u[b], u[c]]),
+        });
     }
     Ok(())
 }

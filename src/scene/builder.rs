@@ -2,9 +2,9 @@
 //! holds those kinds): where keys are, the spectral grid and spectra, and the ids of named
 //! materials and media.
 
-use super::desc::spectra::SpectrumDesc;
 use super::source::Source;
 use super::spectra::SpectrumResolver;
+use super::spectrum_desc::SpectrumDesc;
 use crate::spectrum::SpectralGrid;
 
 pub struct Builder<'a> {

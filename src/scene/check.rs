@@ -4,8 +4,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::desc::spectra::{RgbKind, SpectrumDesc, SpectrumRef};
 use super::source::Source;
+use super::spectrum_desc::{RgbKind, SpectrumDesc, SpectrumRef};
 
 /// One problem: the dotted key it is about and what is wrong.
 #[derive(Clone, Debug, PartialEq)]

@@ -5,6 +5,7 @@
 //! runtime construction together (`camera.rs`, `lights/`, `shapes/`, `materials/`); `tagged.rs`
 //! reads tables whose `type` key picks the kind.
 
+mod array;
 mod build;
 mod builder;
 mod camera;
@@ -19,6 +20,7 @@ mod path;
 mod shapes;
 mod source;
 mod spectra;
+mod spectrum_desc;
 pub mod summary;
 mod tagged;
 mod validate;

@@ -3,9 +3,9 @@
 
 use std::collections::BTreeMap;
 
-use super::desc::spectra::{RgbKind, SpectrumDesc, SpectrumRef};
 use super::error::SceneError;
 use super::source::Source;
+use super::spectrum_desc::{RgbKind, SpectrumDesc, SpectrumRef};
 use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
 
 pub struct SpectrumResolver<'a> {
@@ -94,11 +94,12 @@ impl<'a> SpectrumResolver<'a> {
 
     fn rgb(&self, rgb: [f32; 3], kind: RgbKind) -> Result<Spectrum, SceneError> {
         let kind = match kind {
-            RgbKind::Reflectance => spectrum::RgbKind::Reflectance,
-            RgbKind::Emission => spectrum::RgbKind::Illuminant,
-            RgbKind::Unbounded => spectrum::RgbKind::Unbounded,
+            RgbKind::Reflectance => crate::colour::RgbKind::Reflectance,
+            RgbKind::Emission => crate::colour::RgbKind::Illuminant,
+            RgbKind::Unbounded => crate::colour::RgbKind::Unbounded,
         };
-        spectrum::rgb_to_spectrum(rgb, kind, &self.grid).map_err(|e| self.error("", e.to_string()))
+        crate::colour::rgb_to_spectrum(rgb, kind, &self.grid)
+            .map_err(|e| self.error("", e.to_string()))
     }
 
     pub fn reflectance(&self, r: &SpectrumRef, key: &str) -> Result<Spectrum, SceneError> {

@@ -1,11 +1,11 @@
-//! Spectral bins, the spectral value type carried through light transport, spectral data
-//! (CSV tables and built-ins) reduced exactly to bins, and RGB -> spectrum upsampling.
+//! Spectral bins, the spectral value type carried through light transport, and spectral data
+//! (CSV tables and built-ins) reduced exactly to bins. RGB -> spectrum upsampling needs the
+//! observer and an RGB space, so it lives in `colour::rgb` (spectrum depends on nothing above it).
 
 mod analytic;
 mod builtin;
 mod error;
 mod grid;
-pub mod rgb;
 mod table;
 mod value;
 
@@ -13,6 +13,5 @@ pub use analytic::{constant, power_law};
 pub use builtin::{builtin_names, builtin_table, resolve};
 pub use error::SpectrumError;
 pub use grid::SpectralGrid;
-pub use rgb::{RgbKind, rgb_to_spectrum};
 pub use table::{Extrapolation, PiecewiseLinear, SpectralTable};
 pub use value::{MAX_BINS, Spectrum};

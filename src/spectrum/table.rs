@@ -172,35 +172,7 @@ impl SpectralTable {
         let mut wavelengths = Vec::new();
         let mut data = vec![Vec::new(); ncol];
         for (lno, line) in lines {
-            let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-            if fields.len() != ncol + 1 {
-                return Err(perr(
-                    lno,
-                    format!("expected {} fields, found {}", ncol + 1, fields.len()),
-                ));
-            }
-            let mut row = Vec::with_capacity(ncol + 1);
-            for (j, f) in fields.iter().enumerate() {
-                let v: f64 = f.parse().map_err(|_| {
-                    perr(lno, format!("column {:?}: {f:?} is not a number", names[j]))
-                })?;
-                if !v.is_finite() {
-                    return Err(perr(
-                        lno,
-                        format!("column {:?}: value {f} is not finite", names[j]),
-                    ));
-                }
-                if j > 0 && v < 0.0 && !allow_negative {
-                    return Err(perr(
-                        lno,
-                        format!(
-                            "column {:?}: negative value {f} is not allowed here",
-                            names[j]
-                        ),
-                    ));
-                }
-                row.push(v);
-            }
+            let row = parse_row(line, &names, allow_negative).map_err(|m| perr(lno, m))?;
             let lambda = row[0];
             if lambda <= 0.0 {
                 return Err(perr(
@@ -276,4 +248,32 @@ impl SpectralTable {
     pub fn column_names(&self) -> impl Iterator<Item = &str> {
         self.columns.iter().map(|(c, _)| c.as_str())
     }
+}
+/// One data row of a table: the wavelength and one finite value per column (non-negative
+/// unless allowed).
+fn parse_row(line: &str, names: &[String], allow_negative: bool) -> Result<Vec<f64>, String> {
+    let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+    if fields.len() != names.len() {
+        return Err(format!(
+            "expected {} fields, found {}",
+            names.len(),
+            fields.len()
+        ));
+    }
+    let mut row = Vec::with_capacity(names.len());
+    for (f, name) in fields.iter().zip(names) {
+        let v: f64 = f
+            .parse()
+            .map_err(|_| format!("column {name:?}: {f:?} is not a number"))?;
+        if !v.is_finite() {
+            return Err(format!("column {name:?}: value {f} is not finite"));
+        }
+        if !row.is_empty() && v < 0.0 && !allow_negative {
+            return Err(format!(
+                "column {name:?}: negative value {f} is not allowed here"
+            ));
+        }
+        row.push(v);
+    }
+    Ok(row)
 }

@@ -17,7 +17,9 @@ pub use metrics::{
 };
 pub use plot::{plot_efficiency, plot_error_vs_time};
 pub use reference::{REFERENCE_MAGIC, Reference};
-pub use run::{Checkpoint, Event, Row, StudyConfig, render_for, render_reference, run_study};
+pub use run::{
+    Checkpoint, Event, InvalidVariants, Row, StudyConfig, render_for, render_reference, run_study,
+};
 pub use summary::{Summary, VariantSummary, summarise, summarise_variants};
 pub use variants::{Variant, Vary, expand, parse_vary};
 

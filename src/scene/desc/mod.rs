@@ -5,12 +5,11 @@
 //! `scene/materials/`) and re-exported here. docs/scene-format.md documents every field; keep
 //! the two in step.
 
-// Leaf descriptions, which the kinds' modules use by these paths (not through this module,
-// which gathers the kinds: that would be an import cycle).
-pub(crate) mod array;
+// Leaf descriptions. The spectrum references and fixed-size arrays every kind uses are
+// siblings of this module (`scene/spectrum_desc.rs`, `scene/array.rs`): this module gathers
+// the kinds, so a kind (or the checks) reaching into it would close an import cycle.
 pub(crate) mod film;
 pub(crate) mod media;
-pub(crate) mod spectra;
 
 use std::collections::BTreeMap;
 
@@ -30,10 +29,10 @@ pub use super::shapes::{
     BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
     TransformDesc,
 };
+pub use super::spectrum_desc::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
 pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
 pub use film::FilmDesc;
 pub use media::MediumDesc;
-pub use spectra::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
 
 use super::tagged::{self, Fault};
 

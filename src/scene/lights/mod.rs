@@ -15,8 +15,8 @@ pub use spot::SpotDesc;
 
 use super::builder::Builder;
 use super::check::Checker;
-use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
+use super::spectrum_desc::SpectrumRef;
 use super::tagged::{Tagged, kinds};
 use crate::light::{DirectChoice, Light};
 

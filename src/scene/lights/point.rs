@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::array::exact;
+use crate::scene::array::exact;
 
 use crate::light::Light;
 use crate::scene::check::Checker;

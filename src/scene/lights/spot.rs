@@ -3,7 +3,7 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::array::exact;
+use crate::scene::array::exact;
 
 use crate::light::Light;
 use crate::scene::check::Checker;

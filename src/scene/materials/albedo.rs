@@ -8,8 +8,8 @@ use super::texture::TextureDesc;
 use crate::material::Albedo;
 use crate::scene::builder::Builder;
 use crate::scene::check::{Checker, above_one};
-use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
+use crate::scene::spectrum_desc::SpectrumRef;
 use crate::spectrum::Spectrum;
 
 /// A material's albedo keys.

@@ -7,8 +7,8 @@ use super::texture::{self, TextureDesc};
 use crate::material::{MIN_ROUGHNESS, Material};
 use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
-use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
+use crate::scene::spectrum_desc::SpectrumRef;
 
 /// Index of refraction of the coat when none is given (varnish, plastic).
 pub const DEFAULT_IOR: f64 = 1.5;

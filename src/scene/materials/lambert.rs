@@ -7,8 +7,8 @@ use super::texture::{self, TextureDesc};
 use crate::material::Material;
 use crate::scene::builder::Builder;
 use crate::scene::check::Checker;
-use crate::scene::desc::spectra::SpectrumRef;
 use crate::scene::error::SceneError;
+use crate::scene::spectrum_desc::SpectrumRef;
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

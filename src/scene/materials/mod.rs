@@ -23,8 +23,8 @@ pub use texture::{TextureDesc, WeightDesc};
 
 use super::builder::Builder;
 use super::check::Checker;
-use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
+use super::spectrum_desc::SpectrumRef;
 use super::tagged::{Tagged, kinds};
 use crate::material::Material;
 

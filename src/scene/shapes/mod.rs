@@ -11,7 +11,7 @@ mod sphere;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::array::exact;
+use crate::scene::array::exact;
 
 pub use cuboid::BoxDesc;
 pub use disc::DiscDesc;
@@ -21,8 +21,8 @@ pub use sphere::SphereDesc;
 
 use super::builder::Builder;
 use super::check::Checker;
-use super::desc::spectra::SpectrumRef;
 use super::error::SceneError;
+use super::spectrum_desc::SpectrumRef;
 use super::tagged::{Tagged, kinds};
 use crate::geometry::{self, ShapeKind, Transform};
 use crate::light::DirectChoice;

@@ -3,7 +3,7 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use crate::scene::desc::array::exact;
+use crate::scene::array::exact;
 
 use crate::geometry::ShapeKind;
 use crate::scene::check::Checker;

@@ -12,7 +12,7 @@ pub use fit::FitContext;
 pub use sigmoid::SigmoidPolynomial;
 pub use table::CoefficientTable;
 
-use super::{Extrapolation, PiecewiseLinear, SpectralGrid, Spectrum, resolve};
+use crate::spectrum::{Extrapolation, PiecewiseLinear, SpectralGrid, Spectrum, resolve};
 
 /// How an RGB triple (linear sRGB / Rec.709, D65) is turned into a spectrum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,7 +35,7 @@ fn d65_unit() -> Option<&'static PiecewiseLinear> {
     static D65: OnceLock<Option<PiecewiseLinear>> = OnceLock::new();
     D65.get_or_init(|| {
         let d = resolve("D65", None, false).ok()?;
-        let cmfs = crate::colour::Observer::Cie1931.cmfs().ok()?;
+        let cmfs = super::Observer::Cie1931.cmfs().ok()?;
         // Y of D65 with the film's normalisation: integral(D65 ybar) / integral(ybar).
         let (a, b) = cmfs.y.range();
         let n = ((b - a) as usize).max(1);

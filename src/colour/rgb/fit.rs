@@ -4,9 +4,9 @@
 
 use std::sync::OnceLock;
 
+use super::super::matrix::{self, Mat3};
+use super::super::{ColourSpace, Observer};
 use super::sigmoid::{LAMBDA_HI, LAMBDA_LO, SigmoidPolynomial, normalised};
-use crate::colour::matrix::{self, Mat3};
-use crate::colour::{ColourSpace, Observer};
 use crate::spectrum::{Extrapolation, resolve};
 
 /// Quadrature samples over 360-830 nm (midpoint rule, ~3.9 nm apart).

@@ -1,0 +1,123 @@
+//! Output files: checked before any work (distinct, writable, leftovers of killed runs removed),
+//! and a safe place for the film when writing them fails after the work is done.
+
+use std::path::{Path, PathBuf};
+
+use brume::film::{Film, FilmId, atomic, checkpoint};
+
+use super::film_files::FILM_EXT;
+
+/// A path as the file system resolves it (through symbolic links of its folder), so that two
+/// spellings of one file compare equal. Files that do not exist yet are resolved through their
+/// folder.
+fn resolved(p: &Path) -> PathBuf {
+    if let Ok(c) = p.canonicalize() {
+        return c;
+    }
+    let dir = p.parent().filter(|d| !d.as_os_str().is_empty());
+    let dir = dir.unwrap_or(Path::new("."));
+    match (dir.canonicalize(), p.file_name()) {
+        (Ok(d), Some(name)) => d.join(name),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// Refuses one file named twice (`-o a.exr -o a.exr`, `--checkpoint x -o x`): the second write
+/// would replace the first with something else.
+pub fn check_distinct(paths: &[&PathBuf]) -> anyhow::Result<()> {
+    for (i, a) in paths.iter().enumerate() {
+        for b in &paths[..i] {
+            anyhow::ensure!(
+                resolved(a) != resolved(b),
+                "{} and {} are the same file: give each output its own name",
+                b.display(),
+                a.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Before any work: removes temporary files of these outputs left by killed brume runs (saying
+/// so), then checks that each output can be written (its folder exists and takes a new file;
+/// it is not a folder).
+pub fn prepare(paths: &[PathBuf]) -> anyhow::Result<()> {
+    for p in paths {
+        for stale in atomic::remove_stale(p) {
+            eprintln!(
+                "brume: removed {}, left by an interrupted run",
+                stale.display()
+            );
+        }
+    }
+    for p in paths {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            anyhow::ensure!(
+                dir.is_dir(),
+                "{}: output folder does not exist",
+                dir.display()
+            );
+        }
+        atomic::probe(p).map_err(|e| anyhow::anyhow!("{}: cannot write here: {e}", p.display()))?;
+    }
+    Ok(())
+}
+
+/// Writes `film` to the first of `candidates` that takes it and returns that path: the film is
+/// all a render leaves, so after an output failed it must land somewhere.
+pub fn rescue(film: &Film, id: &FilmId, candidates: &[PathBuf]) -> Option<PathBuf> {
+    candidates
+        .iter()
+        .find(|p| checkpoint::write(p, film, id).is_ok())
+        .cloned()
+}
+
+/// Where a film goes when its outputs cannot be written: beside the first output, in the
+/// working folder, in the system's temporary folder.
+pub fn rescue_candidates(first_output: &Path) -> Vec<PathBuf> {
+    let stem = first_output
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "render".into());
+    let name = format!("{stem}.rescued-{}.{FILM_EXT}", std::process::id());
+    vec![
+        first_output.with_file_name(&name),
+        PathBuf::from(&name),
+        std::env::temp_dir().join(&name),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use brume::film::Sampling;
+    use brume::spectrum::SpectralGrid;
+
+    #[test]
+    fn the_same_file_named_twice_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("x.brume");
+        let b = dir.path().join("sub/../x.brume");
+        std::fs::create_dir(dir.path().join("sub")).unwrap();
+        assert!(check_distinct(&[&a, &b]).is_err());
+        let c = dir.path().join("y.brume");
+        assert!(check_distinct(&[&a, &c]).is_ok());
+    }
+
+    #[test]
+    fn rescue_falls_back_to_the_next_place() {
+        let dir = tempfile::tempdir().unwrap();
+        let film = Film::new(1, 1, SpectralGrid::new(2, 400.0, 700.0));
+        let sampling = Sampling {
+            gather_budget: 1,
+            machine_memory: 1,
+            version: "t".into(),
+        };
+        let id = FilmId::new(&1, 0, sampling).unwrap();
+        let gone = dir.path().join("gone/out.brume");
+        let ok = dir.path().join("ok.brume");
+        let saved = rescue(&film, &id, &[gone, ok.clone()]);
+        assert_eq!(saved.as_ref(), Some(&ok));
+        assert_eq!(checkpoint::read(&ok).unwrap().film, film);
+    }
+}

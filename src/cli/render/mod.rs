@@ -1,0 +1,274 @@
+//! `brume render`: everything that can be checked is checked before the scene is built (pass
+//! plan, resume agreement, outputs writable, memory), and nothing rendered is lost afterwards:
+//! when an output cannot be written the film is saved somewhere and the message says where.
+
+mod interrupt;
+mod plan;
+mod targets;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use super::RenderArgs;
+use super::command_line::CommandLine;
+use super::film_files::{self, is_film_path};
+use super::outputs;
+use super::progress::Progress;
+use brume::film::{Film, FilmFile, FilmId, checkpoint, output};
+use brume::integrator::{Budget, MemoryEstimate, Renderer};
+use brume::scene::LoadedScene;
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let stop = interrupt::install(args.quiet);
+    let cmd = CommandLine::current();
+    check_numbers(args)?;
+    let loaded = brume::scene::load(&args.scene.scene, &args.scene.sets)?;
+    let resumed = args.resume.as_deref().map(read_film).transpose()?;
+    let seed = match (&resumed, args.seed) {
+        (Some(r), Some(s)) if r.id.seed != s => anyhow::bail!(
+            "--seed {s} differs from the seed {} of the checkpoint being resumed",
+            r.id.seed
+        ),
+        (Some(r), _) => r.id.seed,
+        (None, s) => s.unwrap_or(loaded.desc.integrator.seed),
+    };
+    let id = film_files::film_id(&loaded, seed)?;
+    let resume_path = args.resume.as_deref().unwrap_or(Path::new(""));
+    if let Some(r) = &resumed {
+        let name = resume_path.display().to_string();
+        film_files::check_same_render(&r.id, &name, &id, "the render asked for")?;
+    }
+    let resumed_ref = resumed.as_ref().map(|r| (resume_path, r));
+    let plan = plan::plan(args, loaded.desc.integrator.passes, resumed_ref, &cmd)?;
+    let outputs = targets::outputs(args, &loaded, plan.range)?;
+    check_memory(&loaded.desc, args.force)?;
+    let pool = super::thread_pool(args.threads)?;
+
+    let start = Instant::now();
+    let (film, interrupted) = pool.install(|| render(args, &loaded, &id, &plan, resumed, &stop))?;
+    let saved = save(args, &outputs, &film, &id)?;
+    report(args, &film, &id, interrupted, start, &saved, &cmd);
+    Ok(if interrupted {
+        ExitCode::from(interrupt::INTERRUPTED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Command-line numbers the parser cannot bound.
+fn check_numbers(args: &RenderArgs) -> anyhow::Result<()> {
+    if let Some(t) = args.time {
+        anyhow::ensure!(
+            t.is_finite() && t > 0.0,
+            "--time must be a positive number of seconds"
+        );
+    }
+    anyhow::ensure!(args.passes != Some(0), "--passes must be at least 1");
+    if let Some(m) = args.checkpoint_every {
+        anyhow::ensure!(
+            m.is_finite() && m > 0.0,
+            "--checkpoint-every must be a positive number of minutes"
+        );
+    }
+    Ok(())
+}
+
+/// Reads a film file to resume, refusing one larger than the machine's memory before loading.
+fn read_film(path: &Path) -> anyhow::Result<FilmFile> {
+    let header = checkpoint::read_header(path)?;
+    if let Some(ram) = film_files::machine_memory() {
+        anyhow::ensure!(
+            header.file_bytes <= ram,
+            "{}: the film file holds {} bytes, more than this machine's memory ({ram} bytes)",
+            path.display(),
+            header.file_bytes
+        );
+    }
+    Ok(checkpoint::read(path)?)
+}
+
+/// Builds the scene and renders the plan; returns the film (whole passes only) and whether an
+/// interrupt stopped it.
+fn render(
+    args: &RenderArgs,
+    loaded: &LoadedScene,
+    id: &FilmId,
+    plan: &plan::Plan,
+    resumed: Option<FilmFile>,
+    stop: &AtomicBool,
+) -> anyhow::Result<(Film, bool)> {
+    let (scene, warnings) = brume::scene::build_with_warnings(loaded)?;
+    for w in &warnings {
+        eprintln!("brume: warning: {w}");
+    }
+    let integrator = brume::scene::build_integrator(loaded, &scene)?;
+    let seed = id.seed;
+    let mut renderer = match resumed {
+        Some(r) => {
+            Renderer::resume(&scene, integrator, seed, r.film).map_err(anyhow::Error::msg)?
+        }
+        None => Renderer::starting_at(&scene, integrator, seed, plan.first),
+    };
+    let total = match plan.budget {
+        Budget::Passes(p) => p as u64,
+        Budget::Time(t) => t.ceil() as u64,
+    };
+    let mut progress = Progress::new("render", total, args.quiet);
+    let every = args.checkpoint_every.map(|m| m * 60.0);
+    let mut last_save = 0.0;
+    let interrupted = renderer.run_until(plan.budget, stop, |film, elapsed| {
+        let shown = match plan.budget {
+            Budget::Passes(_) => film.passes,
+            Budget::Time(_) => (elapsed as u64).min(total),
+        };
+        progress.set(shown, &format!("{} passes", film.passes));
+        let due = every.is_some_and(|every| elapsed - last_save >= every);
+        if let (Some(path), true) = (&args.checkpoint, due) {
+            last_save = elapsed;
+            if let Err(e) = checkpoint::write(path, film, id) {
+                eprintln!("brume: warning: checkpoint not saved: {e}");
+            }
+        }
+    });
+    progress.finish();
+    Ok((renderer.into_film(), interrupted))
+}
+
+/// What was written, and which film file holds the passes (to resume or merge from).
+struct Saved {
+    written: Vec<PathBuf>,
+    film_file: Option<PathBuf>,
+}
+
+/// Writes the outputs and the checkpoint. A film without passes (interrupted before its first)
+/// writes nothing: it would replace an earlier file with an empty one. When an output fails,
+/// the film is saved somewhere safe and the error says where.
+fn save(args: &RenderArgs, outputs: &[PathBuf], film: &Film, id: &FilmId) -> anyhow::Result<Saved> {
+    let mut targets: Vec<PathBuf> = Vec::new();
+    if film.passes > 0 {
+        targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
+    }
+    let opts = film_files::output_options(id)?;
+    let is_film = |p: &PathBuf| is_film_path(p) || args.checkpoint.as_ref() == Some(p);
+    let mut image = None;
+    let mut failed = Vec::new();
+    let mut written = Vec::new();
+    for t in &targets {
+        let result = if is_film(t) {
+            checkpoint::write(t, film, id).map_err(anyhow::Error::from)
+        } else {
+            let img = image.get_or_insert_with(|| film.image());
+            output::write(t, img, &opts).map_err(anyhow::Error::from)
+        };
+        match result {
+            Ok(()) => written.push(t.clone()),
+            Err(e) => failed.push(e),
+        }
+    }
+    let film_file = written.iter().find(|p| is_film(p)).cloned();
+    if failed.is_empty() {
+        return Ok(Saved { written, film_file });
+    }
+    let errors: Vec<String> = failed.iter().map(|e| format!("{e:#}")).collect();
+    let safe = match film_file {
+        Some(p) => Some(p),
+        None => outputs::rescue(film, id, &outputs::rescue_candidates(&targets[0])),
+    };
+    let images: Vec<String> = targets
+        .iter()
+        .filter(|t| !written.contains(t) && !is_film(t))
+        .map(|t| format!("-o {}", t.display()))
+        .collect();
+    Err(match safe {
+        Some(p) => anyhow::anyhow!(
+            "{}; the film of passes {}..{} is saved in {} (write the images with `brume merge \
+             {} {}`)",
+            errors.join("; "),
+            film.first,
+            film.end(),
+            p.display(),
+            p.display(),
+            images.join(" ")
+        ),
+        None => anyhow::anyhow!(
+            "{}; the film could not be saved anywhere either",
+            errors.join("; ")
+        ),
+    })
+}
+
+fn report(
+    args: &RenderArgs,
+    film: &Film,
+    id: &FilmId,
+    interrupted: bool,
+    start: Instant,
+    saved: &Saved,
+    cmd: &CommandLine,
+) {
+    let dropped = if film.dropped > 0 {
+        format!(", {} non-finite samples dropped", film.dropped)
+    } else {
+        String::new()
+    };
+    let wrote = if saved.written.is_empty() {
+        "nothing written".to_string()
+    } else {
+        format!("wrote {}", film_files::list(&saved.written))
+    };
+    if !interrupted {
+        if !args.quiet {
+            eprintln!(
+                "brume: {} passes in {:.2} s{dropped}; {wrote}",
+                film.passes,
+                start.elapsed().as_secs_f64(),
+            );
+        }
+        return;
+    }
+    eprintln!(
+        "brume: interrupted: kept {} completed passes (passes {}..{} of seed {}){dropped}; {wrote}",
+        film.passes,
+        film.first,
+        film.end(),
+        id.seed
+    );
+    if let Some(f) = &saved.film_file {
+        let again = cmd.replacing(&["--resume"], &[("--resume", f.display().to_string())]);
+        eprintln!("brume: continue with `{}`", again.shell());
+    }
+}
+
+/// Refuses a render whose memory estimate exceeds the machine's memory, unless forced.
+fn check_memory(desc: &brume::scene::desc::SceneDesc, force: bool) -> anyhow::Result<()> {
+    let Some(ram) = film_files::machine_memory() else {
+        return Ok(());
+    };
+    let est = MemoryEstimate::new(
+        &desc.integrator,
+        desc.camera.width as u64 * desc.camera.height as u64,
+        desc.film.bins,
+        !desc.media.is_empty(),
+    );
+    let values = desc.camera.width as f64 * desc.camera.height as f64 * desc.film.bins as f64;
+    // Film: three i128 sums; pass buffer: two f32 layers; final image: data, noise, layers.
+    let film = values * (3.0 * 16.0 + 2.0 * 4.0 + 4.0 * 4.0);
+    let gather = est.gather_bytes.min(desc.integrator.gather_budget() as f64);
+    let need = film + gather;
+    let ram = ram as f64;
+    if need > ram && !force {
+        anyhow::bail!(
+            "the render needs about {:.1} GiB (film {:.1} GiB, gather {:.1} GiB) but the machine \
+             has {:.1} GiB; lower camera.width/height or film.bins, or pass --force",
+            need / GIB,
+            film / GIB,
+            gather / GIB,
+            ram / GIB
+        );
+    }
+    Ok(())
+}
+
+const GIB: f64 = (1u64 << 30) as f64;
