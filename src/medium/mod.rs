@@ -1,5 +1,5 @@
-//! Participating media: homogeneous spectral media, the Henyey–Greenstein phase function, the
-//! spectral channel mixture used to sample distances, the camera-side multi-sphere walk
+//! Participating media: homogeneous spectral media, phase functions (a closed set, `phase`),
+//! fog from droplet sizes by Lorenz–Mie theory (`droplets`), the spectral channel mixture used to sample distances, the camera-side multi-sphere walk
 //! (docs: method note 2-4) and forward (light-side) free flights.
 //!
 //! Everything here is allocation-free and works on one segment at a time, so the render engine
@@ -17,6 +17,9 @@ pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};
 pub use homogeneous::HomogeneousMedium;
 pub use mixture::{ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, relative_extinction};
-pub use phase::HenyeyGreenstein;
+pub use phase::{
+    Draine, HenyeyGreenstein, HgDraine, Phase, PhaseCsv, PhaseDesc, PhaseSample, PhaseTable,
+    Rayleigh, TwoTermHg, bin_pick, hg_draine_fit, intern as phase_intern,
+};
 pub use spectral::power_law;
 pub use walk::{MultiSphereWalk, StepRate, WalkEnd, sample_extinction};
