@@ -4,9 +4,11 @@ use super::SceneArgs;
 
 pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     let scene = brume::scene::load(&args.scene, &args.sets)?;
-    // Building reads every texture, mesh and spectrum file: info reports their errors too.
-    brume::scene::build(&scene)?;
+    // The summary first (it builds each medium on its own, so a medium that cannot be
+    // rendered yet is still described); then building reads every texture, mesh and spectrum
+    // file, so info reports their errors too.
     let s = brume::scene::summary::summarise(&scene);
     print!("{s}");
+    brume::scene::build(&scene)?;
     Ok(ExitCode::SUCCESS)
 }

@@ -5,6 +5,8 @@
 //! Everything here is allocation-free and works on one segment at a time, so the render engine
 //! can call it from its per-ray loops.
 
+mod build;
+pub mod droplets;
 mod error;
 mod forward;
 mod homogeneous;
@@ -13,6 +15,9 @@ mod phase;
 mod spectral;
 mod walk;
 
+pub use build::{
+    BuiltMedium, KeyedError, MediumParts, build as build_medium, check as check_medium,
+};
 pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};
 pub use homogeneous::HomogeneousMedium;

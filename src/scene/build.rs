@@ -13,7 +13,7 @@ use crate::camera::Camera;
 use crate::geometry::{self, Geometry, Ray, ShapeKind, Transform};
 use crate::light::{Light, LightSet};
 use crate::material::{Albedo, Material, Texture};
-use crate::medium::{HomogeneousMedium, MultiSphereWalk};
+use crate::medium::{BuiltMedium, HomogeneousMedium, MediumParts, MultiSphereWalk};
 use crate::scene::desc::{IntegratorDesc, Projection, SceneDesc};
 use crate::spectrum::{SpectralGrid, Spectrum};
 
@@ -54,6 +54,51 @@ fn err(scene: &LoadedScene, key: String, message: String) -> SceneError {
     }
 }
 
+/// Builds medium `name` (spectra resolved here, the rest in `medium::build_medium`). A phase
+/// that varies per spectral bin (droplets, per-wavelength tables) is refused for now: the
+/// renderer still evaluates one phase for all bins (issue 17's integrator part), and would
+/// silently render the bins' average instead. `summary` builds media on its own for `info`.
+pub fn build_medium(
+    scene: &LoadedScene,
+    spectra: &SpectrumResolver,
+    name: &str,
+) -> Result<BuiltMedium, SceneError> {
+    let m = &scene.desc.media[name];
+    let key = format!("media.{name}");
+    let ss = match &m.sigma_s {
+        Some(s) => Some(spectra.unbounded(s, &format!("{key}.sigma_s"))?),
+        None => None,
+    };
+    let sa = spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
+    let parts = MediumParts {
+        sigma_s: ss.as_ref(),
+        sigma_a: &sa,
+        g: m.g,
+        phase: m.phase.as_ref(),
+        droplets: m.droplets.as_ref(),
+    };
+    let built = crate::medium::build_medium(parts, &scene.desc.film.grid(), &|f| scene.resolve(f))
+        .map_err(|e| {
+            let k = format!("{key}.{}", e.key);
+            match e.error {
+                crate::medium::MediumError::PhaseFile {
+                    file,
+                    line,
+                    message,
+                } => SceneError::Invalid {
+                    origin: Origin::File {
+                        file,
+                        line: Some((line, 1)),
+                    },
+                    key: KeyText(k),
+                    message,
+                },
+                other => err(scene, k, other.to_string()),
+            }
+        })?;
+    Ok(built)
+}
+
 fn v3(a: [f32; 3]) -> Vec3 {
     Vec3::from_array(a)
 }
@@ -79,13 +124,24 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
         .collect();
     let media = d
         .media
-        .iter()
-        .map(|(name, m)| {
-            let key = format!("media.{name}");
-            let ss = spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
-            let sa = spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
-            HomogeneousMedium::new(&ss, &sa, m.g, n)
-                .map_err(|e| err(scene, key.clone(), e.to_string()))
+        .keys()
+        .map(|name| {
+            let b = build_medium(scene, &spectra, name)?;
+            if b.medium.phase.varies_per_bin() {
+                let key = match b.droplets {
+                    Some(_) => "droplets",
+                    None => "phase",
+                };
+                return Err(err(
+                    scene,
+                    format!("media.{name}.{key}"),
+                    "its phase function varies per spectral bin, which the renderer does not \
+                     use yet (it would render the bins' average phase): `brume info` shows the \
+                     medium; render it with a phase that is the same in every bin for now"
+                        .into(),
+                ));
+            }
+            Ok(b.medium)
         })
         .collect::<Result<Vec<_>, SceneError>>()?;
 

@@ -374,12 +374,18 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
 
     for (name, m) in &d.media {
         let key = format!("media.{name}");
-        c.spectrum_ref(&format!("{key}.sigma_s"), &m.sigma_s, d);
+        if let Some(s) = &m.sigma_s {
+            c.spectrum_ref(&format!("{key}.sigma_s"), s, d);
+        }
         c.spectrum_ref(&format!("{key}.sigma_a"), &m.sigma_a, d);
-        if !(m.g.is_finite() && m.g.abs() < 1.0) {
+        for (k, message) in m.check(&|f| scene.resolve(f).is_file()) {
             c.fail(
-                format!("{key}.g"),
-                format!("must be in (-1, 1), got {}", m.g),
+                if k.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{key}.{k}")
+                },
+                message,
             );
         }
     }

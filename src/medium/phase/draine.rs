@@ -59,6 +59,15 @@ impl Draine {
         (g * (1.0 + a * (3.0 + 2.0 * g * g) / 5.0) / (1.0 + a * (1.0 + 2.0 * g * g) / 3.0)) as f32
     }
 
+    /// The `g` parameter (not the mean cosine unless alpha = 0).
+    pub fn g_param(&self) -> f32 {
+        self.g as f32
+    }
+
+    pub fn alpha(&self) -> f32 {
+        self.alpha as f32
+    }
+
     pub fn eval64(&self, mu: f64) -> f64 {
         let g = self.g;
         let u = (1.0 + g * g - 2.0 * g * mu).max(1e-300);

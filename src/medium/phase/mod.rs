@@ -82,6 +82,37 @@ impl Phase {
         }
     }
 
+    /// A one-line description for `brume info`.
+    pub fn describe(&self) -> String {
+        match self {
+            Phase::Hg(p) => format!("hg, g = {}", p.g()),
+            Phase::TwoTermHg(p) => format!("two-term-hg, mean cosine {:.4}", p.g()),
+            Phase::Rayleigh(_) => "rayleigh".into(),
+            Phase::Draine(p) => format!("draine, mean cosine {:.4}", p.g()),
+            Phase::HgDraine(p) => {
+                let (hg, d, w) = p.parts();
+                format!(
+                    "hg-draine for {} µm droplets: (1 - {w:.4}) HG({:.4}) + {w:.4} Draine({:.4}, \
+                     alpha {:.2})",
+                    p.diameter(),
+                    hg.g(),
+                    d.g_param(),
+                    d.alpha()
+                )
+            }
+            Phase::Tabulated(t) => format!(
+                "tabulated ({}; {} angles, {})",
+                t.source(),
+                t.nodes(),
+                if t.lanes() > 1 {
+                    "one lane per bin"
+                } else {
+                    "the same in every bin"
+                }
+            ),
+        }
+    }
+
     /// Mean cosine; for a per-bin phase, that of the bins' average phase.
     pub fn g(&self) -> f32 {
         match self {
