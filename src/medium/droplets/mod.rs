@@ -215,7 +215,7 @@ pub struct DropletOptics {
     pub refractive_index: String,
 }
 
-/// Scattering angles (degrees) of the droplet phase tables: 0, then geometric steps (x1.04)
+/// Scattering angles (degrees) of the droplet phase tables: 0, then geometric steps (x1.03)
 /// from 0.01° to 10° for the diffraction peak (width ~λ/2r: 0.3-5° for fog and haze), 1°
 /// steps to 170°, and 0.5° steps over the glory to 180°. Holds 30, 90, 140 exactly. The table
 /// is linear in cos θ between nodes; at this spacing its normalisation differs from the
@@ -225,7 +225,7 @@ pub fn phase_angles() -> Vec<f64> {
     let mut t = 0.01;
     while t < 10.0 {
         a.push(t);
-        t *= 1.04;
+        t *= 1.03;
     }
     a.extend((10..170).map(f64::from));
     a.extend((0..=20).map(|i| 170.0 + 0.5 * i as f64));
