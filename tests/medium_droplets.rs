@@ -129,6 +129,11 @@ fn spectral_interpolation_is_accurate() {
     )
     .unwrap();
     let sigma = direct.c_ext * o.number_density * 1e-6;
+    println!(
+        "bin {bin}: interpolated sigma_ext {:.3e} relative, g {:.3e} absolute",
+        o.sigma_ext[bin] / sigma - 1.0,
+        o.g[bin] - direct.g
+    );
     assert!(
         (o.sigma_ext[bin] / sigma - 1.0).abs() < 2e-3,
         "{} vs {sigma}",

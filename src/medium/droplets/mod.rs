@@ -87,50 +87,55 @@ pub const DEFAULT_ALPHA: f64 = 6.0;
 pub const DEFAULT_GAMMA: f64 = 1.0;
 
 impl DropletsDesc {
+    /// Each numeric key outside its range: (key, message).
+    fn range_problems(&self) -> Vec<(String, String)> {
+        type Rule = (&'static str, fn(f64) -> bool, &'static str);
+        let rules: [(Option<f64>, Rule); 8] = [
+            (
+                Some(self.effective_radius),
+                (
+                    "effective_radius",
+                    |v| v > 0.0 && v <= 1e3,
+                    "in (0, 1000] µm",
+                ),
+            ),
+            (self.width, ("width", |v| v > 1.0 && v <= 5.0, "in (1, 5]")),
+            (
+                self.alpha,
+                ("alpha", |v| (0.0..=100.0).contains(&v), "in [0, 100]"),
+            ),
+            (
+                self.gamma,
+                ("gamma", |v| v > 0.0 && v <= 10.0, "in (0, 10]"),
+            ),
+            (
+                self.number_density,
+                ("number_density", |v| v > 0.0, "> 0 per cm³"),
+            ),
+            (
+                self.liquid_water_content,
+                ("liquid_water_content", |v| v > 0.0, "> 0 g/m³"),
+            ),
+            (self.visibility, ("visibility", |v| v > 0.0, "> 0 m")),
+            (
+                Some(self.quadrature_step),
+                ("quadrature_step", |v| v > 0.0 && v <= 1.0, "in (0, 1]"),
+            ),
+        ];
+        rules
+            .iter()
+            .filter_map(|&(v, (key, ok, what))| {
+                let v = v?;
+                (!(v.is_finite() && ok(v)))
+                    .then(|| (key.to_string(), format!("must be {what}, got {v}")))
+            })
+            .collect()
+    }
+
     /// Range checks: (key below `droplets`, message) per problem. `exists` tells whether a
     /// file named in the scene exists.
     pub fn check(&self, exists: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
-        let mut out = Vec::new();
-        let mut range = |key: &str, v: Option<f64>, ok: fn(f64) -> bool, what: &str| {
-            if let Some(v) = v
-                && !(v.is_finite() && ok(v))
-            {
-                out.push((key.to_string(), format!("must be {what}, got {v}")));
-            }
-        };
-        range(
-            "effective_radius",
-            Some(self.effective_radius),
-            |v| v > 0.0 && v <= 1000.0,
-            "in (0, 1000] µm",
-        );
-        range("width", self.width, |v| v > 1.0 && v <= 5.0, "in (1, 5]");
-        range(
-            "alpha",
-            self.alpha,
-            |v| (0.0..=100.0).contains(&v),
-            "in [0, 100]",
-        );
-        range("gamma", self.gamma, |v| v > 0.0 && v <= 10.0, "in (0, 10]");
-        range(
-            "number_density",
-            self.number_density,
-            |v| v > 0.0,
-            "> 0 per cm³",
-        );
-        range(
-            "liquid_water_content",
-            self.liquid_water_content,
-            |v| v > 0.0,
-            "> 0 g/m³",
-        );
-        range("visibility", self.visibility, |v| v > 0.0, "> 0 m");
-        range(
-            "quadrature_step",
-            Some(self.quadrature_step),
-            |v| v > 0.0 && v <= 1.0,
-            "in (0, 1]",
-        );
+        let mut out = self.range_problems();
         let amounts = [
             self.number_density,
             self.liquid_water_content,
@@ -285,7 +290,7 @@ fn solve(
         .par_iter()
         .map(|&l| ensemble(&dist, l / 1000.0, index.at(l), &mu, desc.quadrature_step))
         .collect::<Result<Vec<_>, _>>()?;
-    let number_density = concentration(desc, &dist, &index)?;
+    let number_density = concentration(desc, &dist, &index, &samples, &solved)?;
     // Cross sections in µm² times droplets per cm³: 1e-12 m² x 1e6 m^-3 = 1e-6 1/m.
     let scale = number_density * 1e-6;
     let mut o = DropletOptics {
@@ -350,10 +355,14 @@ fn interpolation(samples: &[f64], lambda: f64) -> (usize, f64) {
 }
 
 /// Droplets per cm³ from whichever amount the description gives.
+/// A target visibility uses the extinction at 550 nm interpolated from the solved wavelengths
+/// when they span it (as the bins there are), else a solution at 550 nm.
 fn concentration(
     desc: &DropletsDesc,
     dist: &SizeDistribution,
     index: &RefractiveIndex,
+    samples: &[f64],
+    solved: &[EnsembleOptics],
 ) -> Result<f64, MediumError> {
     if let Some(n) = desc.number_density {
         return Ok(n);
@@ -366,15 +375,16 @@ fn concentration(
         MediumError::Droplets("give one of number_density, liquid_water_content, visibility".into())
     })?;
     let at = VISIBILITY_NM;
-    let c = ensemble(
-        dist,
-        at / 1000.0,
-        index.at(at),
-        &[1.0],
-        desc.quadrature_step,
-    )?;
+    let spanned = samples.len() > 1 && samples[0] <= at && at <= samples[samples.len() - 1];
+    let c_ext = if spanned {
+        let (i, t) = interpolation(samples, at);
+        (1.0 - t) * solved[i].c_ext + t * solved[i + 1].c_ext
+    } else {
+        let mu = [1.0];
+        ensemble(dist, at / 1000.0, index.at(at), &mu, desc.quadrature_step)?.c_ext
+    };
     let sigma = -MOR_CONTRAST.ln() / v;
-    Ok(sigma / (c.c_ext * 1e-6))
+    Ok(sigma / (c_ext * 1e-6))
 }
 
 /// Meteorological optical range (m) for an extinction (1/m).

@@ -42,78 +42,15 @@ pub fn parse(text: &str, file: &Path) -> Result<PhaseCsv, MediumError> {
     let Some((header_line, header)) = rows.next() else {
         return Err(parse_err(file, 1, "empty file: expected a header line"));
     };
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    if names.len() < 2 {
-        return Err(parse_err(
-            file,
-            header_line,
-            "the header needs an angle column and at least one value column",
-        ));
-    }
-    let waves: Vec<Option<f64>> = if names.len() == 2 {
-        vec![None]
-    } else {
-        names[1..]
-            .iter()
-            .map(|n| {
-                wavelength_of(n).map(Some).ok_or_else(|| {
-                    parse_err(
-                        file,
-                        header_line,
-                        format!("with several value columns each must be named by its wavelength in nm, got `{n}`"),
-                    )
-                })
-            })
-            .collect::<Result<_, _>>()?
-    };
-    if waves.windows(2).any(|w| w[0] >= w[1]) {
-        return Err(parse_err(
-            file,
-            header_line,
-            "column wavelengths must increase",
-        ));
-    }
-    let mut angles = Vec::new();
+    let waves = parse_header(header, file, header_line)?;
+    let mut angles: Vec<f64> = Vec::new();
     let mut cols: Vec<Vec<f64>> = vec![Vec::new(); waves.len()];
     let mut last_line = header_line;
     for (line, row) in rows {
         last_line = line;
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
-        if cells.len() != names.len() {
-            return Err(parse_err(
-                file,
-                line,
-                format!("expected {} values, got {}", names.len(), cells.len()),
-            ));
-        }
-        let nums = cells
-            .iter()
-            .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
-            .collect::<Option<Vec<f64>>>()
-            .ok_or_else(|| {
-                parse_err(file, line, format!("not a row of finite numbers: `{row}`"))
-            })?;
-        let angle = nums[0];
-        if !(0.0..=180.0).contains(&angle) {
-            return Err(parse_err(
-                file,
-                line,
-                format!("angle {angle} is outside [0, 180] degrees"),
-            ));
-        }
-        if let Some(&prev) = angles.last()
-            && angle <= prev
-        {
-            return Err(parse_err(
-                file,
-                line,
-                format!("angles must increase strictly (got {angle} after {prev})"),
-            ));
-        }
-        if let Some(v) = nums[1..].iter().find(|v| **v < 0.0) {
-            return Err(parse_err(file, line, format!("negative phase value {v}")));
-        }
-        angles.push(angle);
+        let nums = parse_row(row, waves.len() + 1, angles.last().copied())
+            .map_err(|m| parse_err(file, line, m))?;
+        angles.push(nums[0]);
         for (c, v) in cols.iter_mut().zip(&nums[1..]) {
             c.push(*v);
         }
@@ -125,14 +62,14 @@ pub fn parse(text: &str, file: &Path) -> Result<PhaseCsv, MediumError> {
             format!("needs at least two rows of data, got {}", angles.len()),
         ));
     }
-    if angles[0] != 0.0 || angles[angles.len() - 1] != 180.0 {
+    let (first, last) = (angles[0], angles[angles.len() - 1]);
+    if first != 0.0 || last != 180.0 {
         return Err(parse_err(
             file,
             last_line,
             format!(
-                "the angles must cover the whole sphere, from 0 to 180 degrees (got {} to {})",
-                angles[0],
-                angles[angles.len() - 1]
+                "the angles must cover the whole sphere, from 0 to 180 degrees (got {first} to \
+                 {last})"
             ),
         ));
     }
@@ -141,6 +78,67 @@ pub fn parse(text: &str, file: &Path) -> Result<PhaseCsv, MediumError> {
         columns: waves.into_iter().zip(cols).collect(),
         header_line,
     })
+}
+
+/// The value columns' wavelengths from the header: `None` for a single value column, else
+/// each column's name read as a wavelength in nm (strictly increasing).
+fn parse_header(header: &str, file: &Path, line: usize) -> Result<Vec<Option<f64>>, MediumError> {
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    if names.len() < 2 {
+        return Err(parse_err(
+            file,
+            line,
+            "the header needs an angle column and at least one value column",
+        ));
+    }
+    if names.len() == 2 {
+        return Ok(vec![None]);
+    }
+    let waves = names[1..]
+        .iter()
+        .map(|n| {
+            wavelength_of(n).map(Some).ok_or_else(|| {
+                let m = format!(
+                    "with several value columns each must be named by its wavelength in nm, got \
+                     `{n}`"
+                );
+                parse_err(file, line, m)
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if waves.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(parse_err(file, line, "column wavelengths must increase"));
+    }
+    Ok(waves)
+}
+
+/// One data row: `width` finite numbers, the angle in [0, 180] and above `prev`, the values
+/// non-negative.
+fn parse_row(row: &str, width: usize, prev: Option<f64>) -> Result<Vec<f64>, String> {
+    let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+    if cells.len() != width {
+        return Err(format!("expected {width} values, got {}", cells.len()));
+    }
+    let nums = cells
+        .iter()
+        .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
+        .collect::<Option<Vec<f64>>>()
+        .ok_or_else(|| format!("not a row of finite numbers: `{row}`"))?;
+    let angle = nums[0];
+    if !(0.0..=180.0).contains(&angle) {
+        return Err(format!("angle {angle} is outside [0, 180] degrees"));
+    }
+    if let Some(prev) = prev
+        && angle <= prev
+    {
+        return Err(format!(
+            "angles must increase strictly (got {angle} after {prev})"
+        ));
+    }
+    if let Some(v) = nums[1..].iter().find(|v| **v < 0.0) {
+        return Err(format!("negative phase value {v}"));
+    }
+    Ok(nums)
 }
 
 impl PhaseCsv {
