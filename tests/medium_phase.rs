@@ -169,6 +169,16 @@ fn every_phase() -> Vec<(String, Phase)> {
         ));
     }
     v.push(("tabulated hg 0.7".into(), hg_table(0.7, 0.5)));
+    // A coarse table with steep segments, where sampling inside a segment is what is tested.
+    let csv = "angle_deg,value\n0,10\n45,4\n90,0\n135,0.5\n180,2\n";
+    let grid = SpectralGrid::new(4, 400.0, 700.0);
+    let t = PhaseCsv::parse(csv, Path::new("coarse.csv"))
+        .and_then(|c| c.table(&grid, Path::new("coarse.csv")))
+        .unwrap();
+    v.push((
+        "tabulated coarse".into(),
+        Phase::Tabulated(brume::medium::phase_intern(t)),
+    ));
     v
 }
 
