@@ -4,10 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=${PROFILE:-release}
-cargo build --profile "$profile" --bin brume --example colour_chart
+cargo build --profile "$profile" --bin brume --example colour_chart --example mie_check
 case $profile in dev | test) sub=debug ;; *) sub=$profile ;; esac
 dir=${CARGO_TARGET_DIR:-target}/$sub
 [ -x .venv/bin/python ] || python3 -m venv .venv
 .venv/bin/pip install -q -r tests/python/requirements.txt
 BRUME_BIN=$dir/brume BRUME_COLOUR_CHART=$dir/examples/colour_chart \
+    BRUME_MIE_CHECK=$dir/examples/mie_check \
     .venv/bin/python -m pytest -q tests/python "$@"

@@ -4,12 +4,14 @@ use super::SceneArgs;
 
 pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     let scene = brume::scene::load(&args.scene, &args.sets)?;
-    // Building reads every texture, mesh and spectrum file: info reports their errors too.
+    // The summary first (it builds each medium on its own, so a medium that cannot be
+    // rendered yet is still described); then building reads every texture, mesh and spectrum
+    // file, so info reports their errors too.
+    let s = brume::scene::summary::summarise(&scene);
+    print!("{s}");
     let (_, warnings) = brume::scene::build_with_warnings(&scene)?;
     for w in &warnings {
         eprintln!("brume: warning: {w}");
     }
-    let s = brume::scene::summary::summarise(&scene);
-    print!("{s}");
     Ok(ExitCode::SUCCESS)
 }

@@ -1,8 +1,8 @@
-use super::{HenyeyGreenstein, MediumError};
+use super::{MediumError, Phase};
 use crate::spectrum::{MAX_BINS, Spectrum};
 
-/// A homogeneous medium: per-bin scattering and absorption coefficients in 1/m and a
-/// Henyey–Greenstein phase function. `sigma_t = sigma_s + sigma_a`; lanes past `n` are zero.
+/// A homogeneous medium: per-bin scattering and absorption coefficients in 1/m and a phase
+/// function (the same in every bin, or one per bin: see [`Phase`]). `sigma_t = sigma_s + sigma_a`; lanes past `n` are zero.
 ///
 /// Fields are public for reading in hot loops; build it with [`HomogeneousMedium::new`], which
 /// validates, so that the invariants hold.
@@ -15,7 +15,7 @@ pub struct HomogeneousMedium {
     /// Extinction `sigma_s + sigma_a` per bin (1/m).
     pub sigma_t: Spectrum,
     /// Phase function.
-    pub phase: HenyeyGreenstein,
+    pub phase: Phase,
     /// Number of active spectral bins.
     pub n: usize,
     /// All active bins share one sigma_t: per-bin exponentials are then all the same number.
@@ -23,12 +23,22 @@ pub struct HomogeneousMedium {
 }
 
 impl HomogeneousMedium {
-    /// Validates (`n` in 1..=MAX_BINS, coefficients finite and >= 0 in the first `n` bins,
-    /// |g| < 1) and zeroes the lanes past `n`.
+    /// A Henyey–Greenstein medium: see [`HomogeneousMedium::with_phase`]; |g| < 1.
     pub fn new(
         sigma_s: &Spectrum,
         sigma_a: &Spectrum,
         g: f32,
+        n: usize,
+    ) -> Result<Self, MediumError> {
+        Self::with_phase(sigma_s, sigma_a, Phase::hg(g)?, n)
+    }
+
+    /// Validates (`n` in 1..=MAX_BINS, coefficients finite and >= 0 in the first `n` bins, a
+    /// per-bin phase with exactly `n` lanes) and zeroes the lanes past `n`.
+    pub fn with_phase(
+        sigma_s: &Spectrum,
+        sigma_a: &Spectrum,
+        phase: Phase,
         n: usize,
     ) -> Result<Self, MediumError> {
         if n == 0 || n > MAX_BINS {
@@ -41,7 +51,15 @@ impl HomogeneousMedium {
                 }
             }
         }
-        let phase = HenyeyGreenstein::new(g)?;
+        if let Phase::Tabulated(t) = phase
+            && t.lanes() > 1
+            && t.lanes() != n
+        {
+            return Err(MediumError::PhaseLanes {
+                lanes: t.lanes(),
+                n,
+            });
+        }
         let mut ss = Spectrum::ZERO;
         let mut sa = Spectrum::ZERO;
         ss.0[..n].copy_from_slice(&sigma_s.0[..n]);
@@ -71,9 +89,15 @@ impl HomogeneousMedium {
         Self::new(&Spectrum::from_slice(&ss), &Spectrum::from_slice(&sa), g, n)
     }
 
-    /// Henyey–Greenstein asymmetry.
+    /// Mean cosine of the phase function (of the bins' average for a per-bin phase).
     pub fn g(&self) -> f32 {
         self.phase.g()
+    }
+
+    /// The phase function's density in every bin at `cos` (see [`Phase::eval_bins`]).
+    #[inline]
+    pub fn phase_bins(&self, cos: f32) -> Spectrum {
+        self.phase.eval_bins(cos, self.n)
     }
 
     /// Per-bin single-scattering albedo (0 where sigma_t is 0).

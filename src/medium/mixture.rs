@@ -68,35 +68,42 @@ pub(crate) fn atten(k: f32, s: f32) -> f32 {
     if k == 0.0 { 1.0 } else { (-k * s).exp() }
 }
 
+/// Bin probabilities over bins `0..n` for the pick `pick` (method note 3): for `Throughput`,
+/// `P = (1-d) W/ΣW + d/n` where W's negative or non-finite lanes count as 0 (an all-zero W
+/// falls back to uniform); `d` is clamped to `[MIN_FLOOR, 1]`. `Uniform` ignores W. The
+/// distance mixture and the per-bin phase mixture (`Phase::sample_bins`) share it.
+pub fn channel_probabilities(pick: ChannelPick, w: &Spectrum, n: usize, floor: f32) -> Spectrum {
+    let uniform = 1.0 / n as f32;
+    let mut p = Spectrum::ZERO;
+    let mut total = 0.0;
+    if pick == ChannelPick::Throughput {
+        for l in 0..n {
+            let x = w.0[l];
+            p.0[l] = if x.is_finite() && x > 0.0 { x } else { 0.0 };
+            total += p.0[l];
+        }
+    }
+    if total > 0.0 && total.is_finite() {
+        let d = if floor.is_nan() {
+            DEFAULT_FLOOR
+        } else {
+            floor.clamp(MIN_FLOOR, 1.0)
+        };
+        let scale = (1.0 - d) / total;
+        for l in 0..n {
+            p.0[l] = p.0[l] * scale + d * uniform;
+        }
+    } else {
+        p = Spectrum::splat(uniform, n);
+    }
+    p
+}
+
 impl Mixture {
-    /// Builds the probabilities: for `Throughput`, `P = (1-d) W/ΣW + d/n` where W's negative or
-    /// non-finite lanes count as 0 (an all-zero W falls back to uniform); `d` is clamped to
-    /// `[MIN_FLOOR, 1]`. `Uniform` ignores W.
+    /// Builds the mixture of `medium` with the probabilities of [`channel_probabilities`].
     pub fn new(pick: ChannelPick, w: &Spectrum, medium: &HomogeneousMedium, floor: f32) -> Self {
         let n = medium.n;
-        let uniform = 1.0 / n as f32;
-        let mut p = Spectrum::ZERO;
-        let mut total = 0.0;
-        if pick == ChannelPick::Throughput {
-            for l in 0..n {
-                let x = w.0[l];
-                p.0[l] = if x.is_finite() && x > 0.0 { x } else { 0.0 };
-                total += p.0[l];
-            }
-        }
-        if total > 0.0 && total.is_finite() {
-            let d = if floor.is_nan() {
-                DEFAULT_FLOOR
-            } else {
-                floor.clamp(MIN_FLOOR, 1.0)
-            };
-            let scale = (1.0 - d) / total;
-            for l in 0..n {
-                p.0[l] = p.0[l] * scale + d * uniform;
-            }
-        } else {
-            p = Spectrum::splat(uniform, n);
-        }
+        let p = channel_probabilities(pick, w, n, floor);
         let st = medium.sigma_t;
         let st_min = st.0[..n].iter().copied().fold(f32::INFINITY, f32::min);
         Self { p, st, st_min, n }

@@ -1,10 +1,12 @@
-//! Participating media: homogeneous spectral media, the Henyey–Greenstein phase function, the
-//! spectral channel mixture used to sample distances, the camera-side multi-sphere walk
+//! Participating media: homogeneous spectral media, phase functions (a closed set, `phase`),
+//! fog from droplet sizes by Lorenz–Mie theory (`droplets`), the spectral channel mixture used to sample distances, the camera-side multi-sphere walk
 //! (docs: method note 2-4) and forward (light-side) free flights.
 //!
 //! Everything here is allocation-free and works on one segment at a time, so the render engine
 //! can call it from its per-ray loops.
 
+mod build;
+pub mod droplets;
 mod error;
 mod forward;
 mod homogeneous;
@@ -13,10 +15,19 @@ mod phase;
 mod spectral;
 mod walk;
 
+pub use build::{
+    BuiltMedium, KeyedError, MediumParts, build as build_medium, check as check_medium,
+};
 pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};
 pub use homogeneous::HomogeneousMedium;
-pub use mixture::{ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, relative_extinction};
-pub use phase::HenyeyGreenstein;
+pub use mixture::{
+    ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, channel_probabilities,
+    relative_extinction,
+};
+pub use phase::{
+    Draine, HenyeyGreenstein, HgDraine, Phase, PhaseCsv, PhaseDesc, PhaseSample, PhaseTable,
+    Rayleigh, TwoTermHg, hg_draine_fit, intern as phase_intern,
+};
 pub use spectral::power_law;
 pub use walk::{MultiSphereWalk, WalkEnd, sample_extinction};

@@ -2,21 +2,19 @@
 //! light, shape and material builds itself (see `lights/`, `shapes/`, `materials/`); this file
 //! holds the loops, the media and what depends on the whole scene (medium ids, world box).
 
-use std::collections::BTreeMap;
-
 use glam::Vec3;
 
 use super::builder::{Builder, Inputs};
-use super::desc::{MediumDesc, ShapeDesc, SpectrumRef};
+use super::desc::{ShapeDesc, SpectrumRef};
 use super::error::{SceneError, SceneWarning};
 use super::loaded::LoadedScene;
 use super::materials;
+use super::media;
 use crate::camera::Camera;
 use crate::geometry::Geometry;
 use crate::integrator::Integrator;
 use crate::light::{DirectChoice, Light, LightSet};
 use crate::material::Material;
-use crate::medium::HomogeneousMedium;
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -54,7 +52,7 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
             &format!("spectra.{name}"),
         )?;
     }
-    let media = build_media(&b, &d.media)?;
+    let media = media::build_all(b.source, &b.spectra, &b.grid, &d.media)?;
     let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
     let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
@@ -98,23 +96,6 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
 pub fn build_integrator(loaded: &LoadedScene, scene: &Scene) -> Result<Integrator, SceneError> {
     Integrator::from_desc(&loaded.desc.integrator, scene)
         .map_err(|e| loaded.source().invalid("integrator.q", e.to_string()))
-}
-
-// Media are built as before (their description is being reworked separately).
-fn build_media(
-    b: &Builder,
-    media: &BTreeMap<String, MediumDesc>,
-) -> Result<Vec<HomogeneousMedium>, SceneError> {
-    media
-        .iter()
-        .map(|(name, m)| {
-            let key = format!("media.{name}");
-            let ss = b.spectra.unbounded(&m.sigma_s, &format!("{key}.sigma_s"))?;
-            let sa = b.spectra.unbounded(&m.sigma_a, &format!("{key}.sigma_a"))?;
-            HomogeneousMedium::new(&ss, &sa, m.g, b.grid.n)
-                .map_err(|e| b.source.invalid(&key, e.to_string()))
-        })
-        .collect()
 }
 
 /// The geometry, and the radiance of each emitting shape by shape id.

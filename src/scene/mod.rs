@@ -16,6 +16,7 @@ mod lights;
 mod load;
 mod loaded;
 mod materials;
+mod media;
 mod path;
 mod shapes;
 mod source;

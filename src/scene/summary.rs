@@ -3,6 +3,9 @@
 use std::fmt;
 
 use super::loaded::LoadedScene;
+use super::media::build_medium;
+use super::spectra::SpectrumResolver;
+use crate::medium::droplets::visibility;
 
 pub struct Summary {
     pub file: String,
@@ -21,6 +24,8 @@ pub struct Summary {
     pub radius: f32,
     pub forward_rays: u64,
     pub memory: crate::integrator::MemoryEstimate,
+    /// Per medium: its phase function and per range of bins its optical properties.
+    pub media_report: Vec<String>,
 }
 
 pub fn summarise(scene: &LoadedScene) -> Summary {
@@ -47,6 +52,7 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
             d.film.bins,
             !d.media.is_empty(),
         ),
+        media_report: media_report(scene),
     }
 }
 
@@ -57,6 +63,61 @@ fn spelling<T: serde::Serialize + fmt::Debug>(v: &T) -> String {
         // Not a unit variant: no single word to show; Debug is the honest fallback.
         _ => format!("{v:?}"),
     }
+}
+
+/// At most this many rows per medium: bins are grouped into ranges beyond it.
+const MEDIUM_ROWS: usize = 8;
+
+/// Each medium's phase function and, per range of bins, its extinction, albedo, mean cosine
+/// and visibility (meteorological optical range); droplet fog adds its Lorenz-Mie inputs.
+fn media_report(scene: &LoadedScene) -> Vec<String> {
+    let grid = scene.desc.film.grid();
+    let source = scene.source();
+    let spectra = SpectrumResolver::new(source, grid, &scene.desc.spectra);
+    let mut out = Vec::new();
+    for (name, desc) in &scene.desc.media {
+        let b = match build_medium(source, &spectra, &grid, name, desc) {
+            Ok(b) => b,
+            Err(e) => {
+                out.push(format!("medium {name}: cannot be built: {e}"));
+                continue;
+            }
+        };
+        let m = &b.medium;
+        out.push(format!("medium {name}: phase {}", m.phase.describe()));
+        if let Some(o) = &b.droplets {
+            out.push(format!(
+                "  droplets: r_eff {:.3} µm, {:.4} per cm³, liquid water {:.4} g/m³, index {}, \
+                 Lorenz-Mie at {} wavelengths ({} radii each)",
+                o.effective_radius,
+                o.number_density,
+                o.liquid_water_content,
+                o.refractive_index,
+                o.samples.len(),
+                o.nodes
+            ));
+        }
+        out.push("  bins (nm)       sigma_t (1/m)  albedo     g        visibility (m)".into());
+        let (albedo, g) = (m.albedo(), m.phase.g_bins(m.n));
+        let per = m.n.div_ceil(MEDIUM_ROWS);
+        for start in (0..m.n).step_by(per) {
+            let end = (start + per).min(m.n);
+            let avg = |s: &crate::spectrum::Spectrum| {
+                s.0[start..end].iter().map(|&v| v as f64).sum::<f64>() / (end - start) as f64
+            };
+            let st = avg(&m.sigma_t);
+            out.push(format!(
+                "  {:>5.1}-{:<7.1}  {:<13.6}  {:<9.6}  {:<7.4}  {:.4}",
+                grid.edges(start).0,
+                grid.edges(end - 1).1,
+                st,
+                avg(&albedo),
+                avg(&g),
+                visibility(st)
+            ));
+        }
+    }
+    out
 }
 
 impl fmt::Display for Summary {
@@ -87,6 +148,9 @@ impl fmt::Display for Summary {
             mib(m.gather_bytes)
         )?;
         writeln!(f, "film:         {:.1} MiB", mib(m.film_bytes))?;
+        for line in &self.media_report {
+            writeln!(f, "{line}")?;
+        }
         writeln!(f, "memory:       ~{:.1} MiB in total", mib(m.total()))
     }
 }

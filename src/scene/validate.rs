@@ -80,13 +80,18 @@ fn film(c: &mut Checker, f: &FilmDesc) {
 fn media(c: &mut Checker, d: &SceneDesc) {
     for (name, m) in &d.media {
         let key = format!("media.{name}");
-        c.spectrum_ref(&format!("{key}.sigma_s"), &m.sigma_s);
+        if let Some(s) = &m.sigma_s {
+            c.spectrum_ref(&format!("{key}.sigma_s"), s);
+        }
         c.spectrum_ref(&format!("{key}.sigma_a"), &m.sigma_a);
-        if !(m.g.is_finite() && m.g.abs() < 1.0) {
-            c.fail(
-                format!("{key}.g"),
-                format!("must be in (-1, 1), got {}", m.g),
-            );
+        let source = c.source;
+        for (k, message) in m.check(&|f| source.resolve(f).is_file()) {
+            let at = if k.is_empty() {
+                key.clone()
+            } else {
+                format!("{key}.{k}")
+            };
+            c.fail(at, message);
         }
     }
     if let Some(m) = &d.medium {

@@ -1,4 +1,4 @@
-use super::MediumError;
+use crate::medium::MediumError;
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -39,6 +39,27 @@ impl HenyeyGreenstein {
         let g = self.g;
         let denom = (1.0 + g * g - 2.0 * g * cos).max(1e-12);
         (1.0 - g) * (1.0 + g) / (4.0 * PI * denom * denom.sqrt())
+    }
+
+    /// [`HenyeyGreenstein::eval`] in f64: accurate at the forward peak of |g| -> 1, where the f32
+    /// form loses digits in `1 + g² - 2 g cos` (mixtures that carry such lobes use this).
+    #[inline]
+    pub fn eval64(&self, mu: f64) -> f64 {
+        let g = self.g as f64;
+        let denom = (1.0 + g * g - 2.0 * g * mu).max(1e-300);
+        (1.0 - g) * (1.0 + g) / (4.0 * std::f64::consts::PI * denom * denom.sqrt())
+    }
+
+    /// The exact inverse CDF in f64 (the textbook form, which is well conditioned in f64 for
+    /// every |g| >= 1e-6; below that the uniform cosine, exact to 1e-12).
+    #[inline]
+    pub fn sample_cos64(&self, xi: f64) -> f64 {
+        let g = self.g as f64;
+        if g.abs() < 1e-6 {
+            return (2.0 * xi - 1.0).clamp(-1.0, 1.0);
+        }
+        let s = (1.0 - g) * (1.0 + g) / (1.0 - g + 2.0 * g * xi);
+        ((1.0 + g * g - s * s) / (2.0 * g)).clamp(-1.0, 1.0)
     }
 
     /// Value for a camera ray of direction `u` gathering light that travels along `v`.

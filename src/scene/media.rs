@@ -1,0 +1,85 @@
+//! `[media.*]`: the scene side of building a medium. The medium's own keys, checks and runtime
+//! construction (coefficients, phase function, droplet fog by Lorenz-Mie) are in
+//! `medium::build`; here its spectra are resolved from the scene and its errors are placed at
+//! their keys (a tabulated phase's CSV errors at that file's own line).
+
+use std::collections::BTreeMap;
+
+use super::desc::MediumDesc;
+use super::error::{KeyText, Origin, SceneError};
+use super::source::Source;
+use super::spectra::SpectrumResolver;
+use crate::medium::{BuiltMedium, HomogeneousMedium, MediumError, MediumParts};
+use crate::spectrum::SpectralGrid;
+
+/// Builds medium `name` of `desc`.
+pub fn build_medium(
+    source: Source,
+    spectra: &SpectrumResolver,
+    grid: &SpectralGrid,
+    name: &str,
+    desc: &MediumDesc,
+) -> Result<BuiltMedium, SceneError> {
+    let key = format!("media.{name}");
+    let ss = match &desc.sigma_s {
+        Some(s) => Some(spectra.unbounded(s, &format!("{key}.sigma_s"))?),
+        None => None,
+    };
+    let sa = spectra.unbounded(&desc.sigma_a, &format!("{key}.sigma_a"))?;
+    let parts = MediumParts {
+        sigma_s: ss.as_ref(),
+        sigma_a: &sa,
+        g: desc.g,
+        phase: desc.phase.as_ref(),
+        droplets: desc.droplets.as_ref(),
+    };
+    crate::medium::build_medium(parts, grid, &|f| source.resolve(f)).map_err(|e| {
+        let k = format!("{key}.{}", e.key);
+        match e.error {
+            MediumError::PhaseFile {
+                file,
+                line,
+                message,
+            } => SceneError::Invalid {
+                origin: Origin::File {
+                    file,
+                    line: Some((line, 1)),
+                },
+                key: KeyText(k),
+                message,
+            },
+            other => source.invalid(&k, other.to_string()),
+        }
+    })
+}
+
+/// Every medium of the scene, in name order (their ids). A phase that varies per spectral bin
+/// (droplets, per-wavelength tables) is refused for now: the renderer still evaluates one
+/// phase for all bins, and would silently render the bins' average instead. `brume info`
+/// still describes such a medium ([`super::summary`] builds media on its own).
+pub fn build_all(
+    source: Source,
+    spectra: &SpectrumResolver,
+    grid: &SpectralGrid,
+    media: &BTreeMap<String, MediumDesc>,
+) -> Result<Vec<HomogeneousMedium>, SceneError> {
+    media
+        .iter()
+        .map(|(name, desc)| {
+            let b = build_medium(source, spectra, grid, name, desc)?;
+            if b.medium.phase.varies_per_bin() {
+                let key = match b.droplets {
+                    Some(_) => "droplets",
+                    None => "phase",
+                };
+                return Err(source.invalid(
+                    &format!("media.{name}.{key}"),
+                    "its phase function varies per spectral bin, which the renderer does not \
+                     use yet (it would render the bins' average phase): `brume info` shows the \
+                     medium; render it with a phase that is the same in every bin for now",
+                ));
+            }
+            Ok(b.medium)
+        })
+        .collect()
+}
