@@ -285,18 +285,25 @@ fn bad_media_name_file_line_and_key() {
     at(&e, "test.toml", 12, "media.fog.g");
 }
 
-/// A droplet fog builds for `info` but the renderer refuses it until it uses per-bin phases.
+/// A droplet fog (a phase per spectral bin) builds and renders: finite, lit pixels; `info`
+/// describes it.
 #[test]
-fn per_bin_phases_are_refused_by_the_renderer_for_now() {
+fn droplet_fog_builds_and_renders() {
     let dir = tempfile::tempdir().unwrap();
     let droplets = "[media.fog.droplets]\ndistribution = \"lognormal\"\neffective_radius = 1.0\nnumber_density = 100.0\n";
-    let e = fails(
-        &SCENE.replace("sigma_s = 0.5\ng = 0.5\n", droplets),
-        dir.path(),
-    );
-    assert_eq!(e.key(), Some("media.fog.droplets"));
-    assert!(e.to_string().contains("varies per spectral bin"), "{e}");
+    let light = "\n[[lights]]\ntype = \"point\"\nposition = [0, 0, 0]\npower = 10.0\n";
+    let text = SCENE.replace("sigma_s = 0.5\ng = 0.5\n", droplets) + light;
     let file = dir.path().join("test.toml");
+    std::fs::write(&file, &text).unwrap();
+    let loaded = load(&file, &["camera.width=8".into(), "camera.height=8".into()]).unwrap();
+    let scene = brume::scene::build(&loaded).expect("a droplet fog builds");
+    assert!(scene.media[0].phase.varies_per_bin());
+    let integrator = brume::scene::build_integrator(&loaded, &scene).unwrap();
+    let mut r = brume::integrator::Renderer::new(&scene, integrator, 3);
+    r.run(brume::integrator::Budget::Passes(1), |_, _| {});
+    let img = r.image();
+    assert!(img.data.iter().all(|v| v.is_finite()));
+    assert!(img.data.iter().any(|v| *v > 0.0), "the image is black");
     let s = brume::scene::summary::summarise(&load(&file, &[]).unwrap());
     let text = s.to_string();
     assert!(

@@ -4,9 +4,9 @@ use super::SceneArgs;
 
 pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     let scene = brume::scene::load(&args.scene, &args.sets)?;
-    // The summary first (it builds each medium on its own, so a medium that cannot be
-    // rendered yet is still described); then building reads every texture, mesh and spectrum
-    // file, so info reports their errors too.
+    // The summary first (it builds each medium on its own, so a medium is described even when
+    // something else in the scene fails); then building reads every texture, mesh and
+    // spectrum file, so info reports their errors too.
     let s = brume::scene::summary::summarise(&scene);
     print!("{s}");
     let (_, warnings) = brume::scene::build_with_warnings(&scene)?;

@@ -20,7 +20,7 @@ use super::settings::GatherMode;
 use crate::film::{Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{Mixture, WalkEnd, sample_extinction};
+use crate::medium::{Mixture, WalkEnd, sample_extinction, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -300,8 +300,12 @@ impl PathStep for CameraPath<'_> {
         self.sees_emitters = false;
         self.glossy_from = None;
         let p = ray.o + ray.d * t;
-        let phase = &self.scene.media[m as usize].phase;
-        let d = phase.sample_dir(ray.d, rng.random(), rng.random());
+        let med = &self.scene.media[m as usize];
+        let ch = self.integrator.settings.channels();
+        let (d, factors) = sample_scatter(med, ray.d, &self.w, ch.pick, ch.floor, rng);
+        if let Some(f) = factors {
+            self.w *= f;
+        }
         self.roulette(depth, rng).then_some(Ray { o: p, d })
     }
 

@@ -19,7 +19,7 @@ use super::rng::{self, Domain, Rng};
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{FlightEnd, ForwardFlight};
+use crate::medium::{ChannelPick, FlightEnd, ForwardFlight, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -385,9 +385,13 @@ impl PathStep for ForwardTracer<'_> {
             return None;
         }
         let p = ray.o + ray.d * t;
-        let d = self.scene.media[m as usize]
-            .phase
-            .sample_dir(ray.d, rng.random(), rng.random());
+        let med = &self.scene.media[m as usize];
+        let floor = self.integrator.settings.channel_floor;
+        let (d, factors) =
+            sample_scatter(med, ray.d, &self.flux, ChannelPick::Throughput, floor, rng);
+        if let Some(f) = factors {
+            self.flux *= f;
+        }
         Some(Ray { o: p, d })
     }
 

@@ -195,3 +195,29 @@ impl Mixture {
         e.tr * (1.0 / e.tmix)
     }
 }
+
+/// The direction after a scattering in `medium` of a path travelling along `w` whose per-bin
+/// weights (throughput or flux) are `weights`, and the per-bin factors the weights must be
+/// multiplied by. For a phase function that is the same in every bin: its own exact sample
+/// from two uniforms, no factors. For one that varies per bin (droplet fog): the mixture of the
+/// bins' phases with the channel probabilities of `weights` (three uniforms), and factors
+/// `p_l / p_mix` that keep every bin unbiased (`Phase::sample_bins`).
+#[inline]
+pub fn sample_scatter<R: rand::Rng + ?Sized>(
+    medium: &HomogeneousMedium,
+    w: glam::Vec3,
+    weights: &Spectrum,
+    pick: ChannelPick,
+    floor: f32,
+    rng: &mut R,
+) -> (glam::Vec3, Option<Spectrum>) {
+    if !medium.phase.varies_per_bin() {
+        return (medium.phase.sample_dir(w, rng.random(), rng.random()), None);
+    }
+    let n = medium.n;
+    let p = channel_probabilities(pick, weights, n, floor);
+    let s = medium
+        .phase
+        .sample_bins(w, &p, n, [rng.random(), rng.random(), rng.random()]);
+    (s.dir, Some(s.weight))
+}

@@ -23,7 +23,7 @@ pub use forward::{FlightEnd, ForwardFlight};
 pub use homogeneous::HomogeneousMedium;
 pub use mixture::{
     ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, channel_probabilities,
-    relative_extinction,
+    relative_extinction, sample_scatter,
 };
 pub use phase::{
     Draine, HenyeyGreenstein, HgDraine, Phase, PhaseCsv, PhaseDesc, PhaseSample, PhaseTable,

@@ -53,10 +53,7 @@ pub fn build_medium(
     })
 }
 
-/// Every medium of the scene, in name order (their ids). A phase that varies per spectral bin
-/// (droplets, per-wavelength tables) is refused for now: the renderer still evaluates one
-/// phase for all bins, and would silently render the bins' average instead. `brume info`
-/// still describes such a medium ([`super::summary`] builds media on its own).
+/// Every medium of the scene, in name order (their ids).
 pub fn build_all(
     source: Source,
     spectra: &SpectrumResolver,
@@ -65,21 +62,6 @@ pub fn build_all(
 ) -> Result<Vec<HomogeneousMedium>, SceneError> {
     media
         .iter()
-        .map(|(name, desc)| {
-            let b = build_medium(source, spectra, grid, name, desc)?;
-            if b.medium.phase.varies_per_bin() {
-                let key = match b.droplets {
-                    Some(_) => "droplets",
-                    None => "phase",
-                };
-                return Err(source.invalid(
-                    &format!("media.{name}.{key}"),
-                    "its phase function varies per spectral bin, which the renderer does not \
-                     use yet (it would render the bins' average phase): `brume info` shows the \
-                     medium; render it with a phase that is the same in every bin for now",
-                ));
-            }
-            Ok(b.medium)
-        })
+        .map(|(name, desc)| Ok(build_medium(source, spectra, grid, name, desc)?.medium))
         .collect()
 }

@@ -94,10 +94,14 @@ impl Direct {
                 continue;
             };
             // Light travelling along -wi turns towards the camera (-d): cos = wi . d.
-            let phase = med.phase.eval(arrival.wi.dot(d));
-            let scale = phase / (pdf * prob) * inv_samples;
+            let cos = arrival.wi.dot(d);
             let camera = med.sigma_t.transmittance(t, n);
-            *acc += camera * med.sigma_s * arrival.li * tr * scale;
+            let value = camera * med.sigma_s * arrival.li * tr;
+            *acc += if med.phase.varies_per_bin() {
+                value * med.phase_bins(cos) * (inv_samples / (pdf * prob))
+            } else {
+                value * (med.phase.eval(cos) / (pdf * prob) * inv_samples)
+            };
         }
     }
 }

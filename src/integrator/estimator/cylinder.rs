@@ -11,6 +11,7 @@ use std::f32::consts::PI;
 
 use super::{
     CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds, chord_integral, panels_for,
+    times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{HomogeneousMedium, Mixture, WalkEnd, sample_extinction};
@@ -53,7 +54,7 @@ impl VolumeEstimator for Cylinder {
             Some(fl) => cylinder_eq2_fwd(med, fl.mixture(), &chord, radius),
             None => cylinder_eq2(med, &chord, radius),
         };
-        Some(*f.flux * k * med.phase.eval(-f.d.dot(seg.dir)))
+        Some(times_phase(*f.flux * k, med, -f.d.dot(seg.dir)))
     }
 }
 

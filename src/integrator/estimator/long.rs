@@ -12,7 +12,7 @@ use std::f32::consts::PI;
 use super::cylinder::{phi1, whole_segment};
 use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, capsule_bounds,
-    segment_cylinder,
+    segment_cylinder, times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{HomogeneousMedium, WalkEnd};
@@ -52,7 +52,7 @@ impl VolumeEstimator for LongCylinder {
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
         let k = long_eq3_exact(med, &chord, radius);
-        Some(*f.flux * k * med.phase.eval(-f.d.dot(seg.dir)))
+        Some(times_phase(*f.flux * k, med, -f.d.dot(seg.dir)))
     }
 }
 

@@ -147,6 +147,18 @@ impl Estimator {
     }
 }
 
+/// `value` times the phase function of `med` at `cos` (light along the forward ray turning
+/// towards the camera: `cos = -u.v`): one number for all bins, or each bin's own when the
+/// phase varies per bin (droplet fog, per-wavelength tables).
+#[inline]
+pub(crate) fn times_phase(value: Spectrum, med: &HomogeneousMedium, cos: f32) -> Spectrum {
+    if med.phase.varies_per_bin() {
+        value * med.phase_bins(cos)
+    } else {
+        value * med.phase.eval(cos)
+    }
+}
+
 /// The box of the capsule around `[a, b]` (cylinders) or of the sphere at `b` (`a = b`).
 pub(crate) fn capsule_bounds(a: Vec3, b: Vec3, radius: f32) -> Aabb {
     let r = glam::Vec3A::splat(radius);

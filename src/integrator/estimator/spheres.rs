@@ -73,16 +73,20 @@ impl VolumeEstimator for Spheres {
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_sphere(f.o, f.d, f.len, seg.at(v.s), radius)?;
-        // The phase function only once the exact test hit: about half the box candidates miss.
-        let p = med.phase.eval(-f.d.dot(seg.dir));
         let at = f
             .flight
             .map_or(*f.flux, |fl| fl.flux_at(f.flux, chord.mid()));
-        let k = p * track_length_density(&chord, radius);
         let x = self
             .extinction
             .get(seg.medium as usize)
             .and_then(Option::as_ref);
+        // The phase function only once the exact test hit: about half the box candidates miss.
+        let cos = -f.d.dot(seg.dir);
+        if med.phase.varies_per_bin() {
+            let k = track_length_density(&chord, radius);
+            return Some(at * sphere_weight(med, x, v, k) * med.phase_bins(cos));
+        }
+        let k = med.phase.eval(cos) * track_length_density(&chord, radius);
         Some(at * sphere_weight(med, x, v, k))
     }
 }

@@ -10,7 +10,7 @@ use std::f32::consts::PI;
 
 use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, capsule_bounds,
-    chord_integral, panels_for, segment_cylinder,
+    chord_integral, panels_for, segment_cylinder, times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::integrator::settings::Channels;
@@ -68,7 +68,7 @@ impl VolumeEstimator for TruncatedCylinder {
         let cam = self.channels.mixture(&Spectrum::from_slice(w), med);
         let fwd = f.flight.map(|fl| fl.mixture());
         let k = cylinder_truncated(med, &cam, fwd, &chord, radius);
-        Some(*f.flux * k * med.phase.eval(-f.d.dot(seg.dir)))
+        Some(times_phase(*f.flux * k, med, -f.d.dot(seg.dir)))
     }
 }
 
