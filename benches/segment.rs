@@ -36,6 +36,7 @@ fn cases() -> Vec<Case> {
             let axis = CameraAxis {
                 origin: p() * 0.3,
                 dir: p().normalize(),
+                start: 0.0,
                 len: 1.0,
             };
             Case {

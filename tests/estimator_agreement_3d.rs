@@ -50,6 +50,7 @@ fn spheres_cylinders_and_truncated_cylinders_agree_with_the_closed_form() {
     let axis = CameraAxis {
         origin: Vec3::ZERO,
         dir: u,
+        start: 0.0,
         len: T,
     };
     // Source rectangle in the plane perpendicular to v, covering the cylinder's shadow.

@@ -216,6 +216,8 @@ impl<'a> CameraPath<'a> {
         };
         let cam = CameraSegment {
             medium: &self.scene.media[m as usize],
+            dir: ray.d,
+            radius: self.radius,
             mix,
             len,
             first_extinction: self.first_extinction(),

@@ -46,15 +46,16 @@ pub struct SegmentRecord {
     pub classes: u8,
 }
 
-/// One integration volume: a sphere at `origin + dir * s`, or a cylinder over `[0, s]` of its
-/// segment, as the render's `Estimator` has it.
+/// One integration volume: a sphere at `origin + dir * s`, or a cylinder piece over
+/// `[scale, s]` of its segment, as the render's `Estimator` has it.
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeRecord {
     pub segment: u32,
     /// Distance along the segment (spheres) or length (cylinders).
     pub s: f32,
     /// Spheres: `q / pdf_mix(s)`, scaled as `MixEval` (see `estimator::sphere_weight`);
-    /// cylinders: unused (1).
+    /// cylinders: where the piece starts along the segment (cylinders are cut into pieces
+    /// `[scale, s]`, see `estimator::cylinder::leave_pieces`).
     pub scale: f32,
 }
 

@@ -36,7 +36,7 @@ impl VolumeEstimator for Cylinder {
 
     #[inline]
     fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
-        capsule_bounds(seg.origin, seg.at(v.s), radius)
+        piece_bounds(seg, v, radius)
     }
 
     #[inline]
@@ -66,9 +66,9 @@ impl VolumeEstimator for Cylinder {
 pub(super) fn whole_segment<R: Rng + ?Sized>(
     cam: &CameraSegment,
     rng: &mut R,
-    mut leave: impl FnMut(f32, f32),
+    leave: impl FnMut(f32, f32),
 ) -> WalkEnd {
-    leave(cam.len, 1.0);
+    leave_pieces(cam, cam.len, leave);
     if cam.first_extinction {
         WalkEnd::Transmitted {
             weight: cam.medium.sigma_t.transmittance(cam.len, cam.medium.n),
@@ -78,24 +78,61 @@ pub(super) fn whole_segment<R: Rng + ?Sized>(
     }
 }
 
-/// The axis of an integration cylinder: a camera segment in a medium.
+/// Most pieces one cylinder is cut into (a bound for absurd radii; see `leave_pieces`).
+const MAX_PIECES: usize = 4096;
+
+/// Leaves the cylinder over `[0, len]` of a camera segment as pieces `(end, start)` short
+/// enough that their bounding boxes stay tight: a long cylinder at an angle to the axes has a
+/// box far larger than itself, which every forward ray nearby must then be tested against (in
+/// the fog room, eq. 2 cylinders took minutes per pass). A piece's box grows by `|u_mid| L`
+/// across its axis (`u_mid` the middle one of the direction's components): pieces of
+/// `L = 4 R / |u_mid|` keep that growth within 4 radii. Axis-aligned cylinders stay whole. The
+/// pieces partition the cylinder, so their contributions add up exactly to its own.
+pub(super) fn leave_pieces(cam: &CameraSegment, len: f32, mut leave: impl FnMut(f32, f32)) {
+    let mut c = cam.dir.abs().to_array();
+    c.sort_by(f32::total_cmp);
+    let n = if cam.radius > 0.0 && len.is_finite() {
+        ((len * c[1] / (4.0 * cam.radius)).ceil() as usize).clamp(1, MAX_PIECES)
+    } else {
+        1
+    };
+    let step = len / n as f32;
+    for k in 0..n {
+        let end = if k + 1 == n {
+            len
+        } else {
+            (k + 1) as f32 * step
+        };
+        leave(end, k as f32 * step);
+    }
+}
+
+/// The box of a cylinder piece (`v.scale` its start along the segment, `v.s` its end).
+#[inline]
+pub(super) fn piece_bounds(seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
+    capsule_bounds(seg.at(v.scale), seg.at(v.s), radius)
+}
+
+/// The axis of an integration cylinder (or a piece of one): a camera segment in a medium.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraAxis {
     /// Where the camera segment starts (tau = 0).
     pub origin: Vec3,
     /// Unit direction `u` (camera -> scene).
     pub dir: Vec3,
-    /// Axial length `T` (finite).
+    /// Axial range `[start, len]` of the cylinder (finite; `start = 0` for a whole one).
+    pub start: f32,
     pub len: f32,
 }
 
 impl CameraAxis {
-    /// The axis of the cylinder volume `v` of camera segment `seg`: its first `v.s` metres.
+    /// The axis of the cylinder piece `v` of camera segment `seg`: `[v.scale, v.s]` along it.
     #[inline]
     pub fn of(seg: &SegmentRecord, v: &VolumeRecord) -> Self {
         Self {
             origin: seg.origin,
             dir: seg.dir,
+            start: v.scale,
             len: v.s,
         }
     }
@@ -141,7 +178,8 @@ impl CylinderChord {
 const PARALLEL_EPS: f32 = 1e-12;
 
 /// Intersects the forward segment `o + v lam`, `lam in [0, len]` (`v` unit) with the cylinder of
-/// radius `r` around `axis` (axial range `[0, axis.len]`). `None` when they do not overlap.
+/// radius `r` around `axis` (axial range `[axis.start, axis.len]`). `None` when they do not
+/// overlap.
 #[inline]
 pub fn segment_cylinder(
     axis: &CameraAxis,
@@ -176,11 +214,11 @@ pub fn segment_cylinder(
     }
     if uv != 0.0 {
         let inv = 1.0 / uv;
-        let l1 = -a0 * inv;
+        let l1 = (axis.start - a0) * inv;
         let l2 = (axis.len - a0) * inv;
         lo = lo.max(l1.min(l2));
         hi = hi.min(l1.max(l2));
-    } else if a0 < 0.0 || a0 > axis.len {
+    } else if a0 < axis.start || a0 > axis.len {
         return None;
     }
     if lo.is_nan() || hi.is_nan() || lo >= hi {
@@ -189,8 +227,8 @@ pub fn segment_cylinder(
     Some(CylinderChord {
         lam1: lo,
         lam2: hi,
-        tau1: (a0 + uv * lo).clamp(0.0, axis.len),
-        tau2: (a0 + uv * hi).clamp(0.0, axis.len),
+        tau1: (a0 + uv * lo).clamp(axis.start, axis.len),
+        tau2: (a0 + uv * hi).clamp(axis.start, axis.len),
         uv,
     })
 }

@@ -9,10 +9,10 @@ use obvhs::aabb::Aabb;
 use rand::Rng;
 use std::f32::consts::PI;
 
-use super::cylinder::{phi1, whole_segment};
+use super::cylinder::{phi1, piece_bounds, whole_segment};
 use super::{
-    CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, capsule_bounds,
-    segment_cylinder, times_phase,
+    CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, segment_cylinder,
+    times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{HomogeneousMedium, WalkEnd};
@@ -37,7 +37,7 @@ impl VolumeEstimator for LongCylinder {
 
     #[inline]
     fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
-        capsule_bounds(seg.origin, seg.at(v.s), radius)
+        piece_bounds(seg, v, radius)
     }
 
     #[inline]
@@ -104,6 +104,7 @@ mod tests {
         let axis = CameraAxis {
             origin: Vec3::ZERO,
             dir: Vec3::Z,
+            start: 0.0,
             len: 2.0,
         };
         // (u.v, forward origin): oblique away from / towards the camera, and head-on towards it.

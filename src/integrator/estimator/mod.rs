@@ -47,6 +47,10 @@ pub use truncated::{TruncatedCylinder, cylinder_truncated};
 /// One camera segment in a medium, as the camera side of an estimator sees it.
 pub struct CameraSegment<'a> {
     pub medium: &'a HomogeneousMedium,
+    /// The segment's unit direction (camera -> scene).
+    pub dir: Vec3,
+    /// The pass's gather radius.
+    pub radius: f32,
     /// The segment's spectral mixture (method note 3).
     pub mix: &'a Mixture,
     /// Length to the surface or boundary ahead (may be `+inf`).

@@ -8,9 +8,10 @@ use obvhs::aabb::Aabb;
 use rand::Rng;
 use std::f32::consts::PI;
 
+use super::cylinder::{leave_pieces, piece_bounds};
 use super::{
-    CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, capsule_bounds,
-    chord_integral, panels_for, segment_cylinder, times_phase,
+    CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, chord_integral,
+    panels_for, segment_cylinder, times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::integrator::settings::Channels;
@@ -38,20 +39,20 @@ impl VolumeEstimator for TruncatedCylinder {
         &self,
         cam: &CameraSegment,
         rng: &mut R,
-        mut leave: impl FnMut(f32, f32),
+        leave: impl FnMut(f32, f32),
     ) -> WalkEnd {
         let end = sample_extinction(cam.medium, cam.mix, cam.len, rng);
         let len = match end {
             WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => s,
             WalkEnd::Transmitted { .. } => cam.len,
         };
-        leave(len, 1.0);
+        leave_pieces(cam, len, leave);
         end
     }
 
     #[inline]
     fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
-        capsule_bounds(seg.origin, seg.at(v.s), radius)
+        piece_bounds(seg, v, radius)
     }
 
     #[inline]
