@@ -8,7 +8,7 @@ use super::desc::SceneDesc;
 use super::error::SceneError;
 use super::loaded::LoadedScene;
 use super::spectrum_desc::SpectrumRef;
-use crate::spectrum::{MAX_BINS, SpectralGrid};
+use crate::spectrum::{GridError, MAX_BINS, SpectralGrid};
 
 /// One line of the scene: its wavelength and the dotted key that gives it.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,10 +64,26 @@ pub fn scene_grid(d: &SceneDesc) -> Result<SpectralGrid, Problem> {
     grid(lines.len()).map_err(|whole| {
         // Blame the first line whose addition fails: the grid of the lines before it is fine.
         match (1..=lines.len()).find_map(|k| grid(k).err().map(|e| (k, e))) {
-            Some((k, e)) => problem(&lines[k - 1].key, e.to_string()),
-            None => problem("film.bins", whole.to_string()),
+            Some((k, e)) => problem(&lines[k - 1].key, message(&e)),
+            None => problem("film.bins", message(&whole)),
         }
     })
+}
+
+/// The grid's error in the scene's terms.
+fn message(e: &GridError) -> String {
+    match e {
+        GridError::TooManyBins {
+            needed, uniform, ..
+        } => format!(
+            "with this line the spectral grid would need {needed} bins (film.bins = {uniform}, \
+             split around each line), above the {MAX_BINS} brume carries: lower film.bins or \
+             use fewer lines"
+        ),
+        GridError::NotAWavelength { .. }
+        | GridError::Outside { .. }
+        | GridError::TooClose { .. } => e.to_string(),
+    }
 }
 
 impl LoadedScene {

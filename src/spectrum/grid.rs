@@ -64,8 +64,8 @@ pub enum GridError {
     )]
     TooClose { a: f64, b: f64 },
     #[error(
-        "the spectral grid would need {needed} bins (film.bins = {uniform} split around \
-         {lines} line(s)), above the {MAX_BINS} brume carries: lower film.bins or use fewer lines"
+        "the spectral grid would need {needed} bins ({uniform} equal bins split around \
+         {lines} line(s)), above the {MAX_BINS} brume carries: use fewer equal bins or lines"
     )]
     TooManyBins {
         needed: usize,
