@@ -86,7 +86,7 @@ fn chart(grid: SpectralGrid) -> SpectralImage {
     // Radiance of a perfect white diffuser under this light: Y = 1.
     let light = d65 * (1.0 / w.xyz_of(&d65)[1] as f32);
     let (width, height) = (6 * PATCH, 5 * PATCH);
-    let mut img = SpectralImage::new(width, height, grid);
+    let mut img = SpectralImage::new(width, height, grid.clone());
     let mut put = |x: usize, y: usize, s: &Spectrum| {
         let i = (y * width + x) * n;
         img.data[i..i + n].copy_from_slice(s.as_slice(n));

@@ -6,7 +6,7 @@ use std::f32::consts::PI;
 
 use brume::geometry::{Geometry, ShapeDesc, ShapeKind, Transform};
 use brume::light::{Light, LightSet};
-use brume::spectrum::Spectrum;
+use brume::spectrum::{SpectralGrid, Spectrum};
 use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -304,7 +304,7 @@ fn light_set_shares_rays_in_proportion_to_power() {
         ),
         Light::point(Vec3::new(4.0, 0.0, 0.0), Spectrum::ZERO),
     ];
-    let set = LightSet::new(lights.clone(), &geo);
+    let set = LightSet::new(lights.clone(), &geo, &SpectralGrid::new(NB, 400.0, 700.0));
     let total: f32 = lights.iter().map(|l| l.power(&geo).sum()).sum();
     let mut rng = Pcg64Mcg::seed_from_u64(905);
     let n = 200_000;
@@ -338,5 +338,10 @@ fn light_set_shares_rays_in_proportion_to_power() {
             );
         }
     }
-    assert!(LightSet::new(vec![], &geo).sample(&geo, [0.5; 5]).is_none());
+    let grid = SpectralGrid::new(NB, 400.0, 700.0);
+    assert!(
+        LightSet::new(vec![], &geo, &grid)
+            .sample(&geo, [0.5; 5])
+            .is_none()
+    );
 }

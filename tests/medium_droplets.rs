@@ -142,6 +142,26 @@ fn spectral_interpolation_is_accurate() {
     assert!((o.g[bin] - direct.g).abs() < 2e-3);
 }
 
+/// A spectral line's bin holds the droplets' optics at the line itself: the line is solved
+/// along with the evenly spaced wavelengths, not interpolated between them.
+#[test]
+fn a_line_bin_is_solved_at_its_line() {
+    let grid = SpectralGrid::with_lines(9, 380.0, 780.0, &[532.0]).unwrap();
+    let desc = fog(3.0);
+    let o = optics(&desc, &grid, &|f| f.into()).unwrap();
+    assert!(grid.n > 8 && o.samples.len() == 9 && o.samples.contains(&532.0));
+    let index = brume::medium::droplets::RefractiveIndex::water().unwrap();
+    let direct = ensemble(&desc.size(), 0.532, index.at(532.0), &[1.0, -1.0], 0.02).unwrap();
+    let bin = grid.line_bin(532.0).unwrap();
+    let sigma = direct.c_ext * o.number_density * 1e-6;
+    assert!(
+        (o.sigma_ext[bin] / sigma - 1.0).abs() < 1e-9,
+        "{} vs {sigma}",
+        o.sigma_ext[bin]
+    );
+    assert!((o.g[bin] - direct.g).abs() < 1e-9);
+}
+
 const SCENE: &str = r#"
 [camera]
 width = 8

@@ -176,7 +176,7 @@ power = {}
         panic!("a point light")
     };
     let brighter = Light::point(position, power * 1e21);
-    scene.lights = LightSet::new(vec![brighter], &scene.geometry);
+    scene.lights = LightSet::new(vec![brighter], &scene.geometry, &scene.grid);
     let (dropped, _) = render(&scene);
     assert!(dropped > 0, "1e30 W overflows the film");
 

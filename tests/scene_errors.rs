@@ -567,3 +567,63 @@ fn direct_choices_are_checked_per_light() {
     let e = fails(KINDS, &["lights.0.direct=\"sometimes\""]).to_string();
     assert!(e.contains("lights.0.direct"), "{e}");
 }
+
+/// Spectral lines (issue 17): a wavelength that is not one, a negative power, a line outside
+/// the film's range, a scene whose lines need more than 64 bins, and lines where a reflectance
+/// belongs are refused when the scene loads, at the file, line and key that give them.
+#[test]
+fn bad_spectral_lines_name_file_line_and_key() {
+    let light = |spectrum: &str, sets: &[&str]| {
+        kinds_error(
+            "power = 10",
+            &format!("power = 10\nspectrum = {spectrum}"),
+            sets,
+        )
+    };
+    let at = |e: &str, key: &str, what: &str| {
+        assert!(
+            e.starts_with("scenes/test.toml:22:") && e.contains(&format!("key `{key}`: ")),
+            "{e}"
+        );
+        assert!(e.contains(what), "{e}");
+    };
+    let e = light("{ line = -532.0 }", &[]);
+    at(&e, "lights.0.spectrum.line", "finite and > 0 nm");
+    let e = light("{ lines = [[532.0, 1.0], [1064.0, 0.1]] }", &[]);
+    at(
+        &e,
+        "lights.0.spectrum.lines.1.0",
+        "outside the film's range 380-780 nm",
+    );
+    let e = light("{ lines = [[532.0, -1.0]] }", &[]);
+    at(&e, "lights.0.spectrum.lines.0.1", ">= 0");
+    let e = light("{ line = 532.0, lines = [[633.0, 1.0]] }", &[]);
+    at(&e, "lights.0.spectrum", "either `line");
+    // 60 equal bins; each line inside one splits it: 62, 64, then 66 bins at the third line.
+    let three = "{ lines = [[450.0, 1.0], [532.0, 1.0], [633.0, 1.0]] }";
+    let e = light(three, &["film.bins=60"]);
+    at(&e, "lights.0.spectrum.lines.2.0", "would need 66 bins");
+    assert!(e.contains("film.bins = 60"), "{e}");
+    // 58 equal bins and the same lines fill the 64 exactly.
+    let text = KINDS.replacen("power = 10", &format!("power = 10\nspectrum = {three}"), 1);
+    let s = load_str(
+        &text,
+        Path::new("scenes/test.toml"),
+        &["film.bins=58".into()],
+    )
+    .unwrap();
+    let grid = brume::scene::build(&s).expect("builds").grid;
+    assert_eq!((grid.n, grid.lines()), (64, &[450.0, 532.0, 633.0][..]));
+    // A shape's `emit` takes lines too; an albedo does not.
+    let e = kinds_error("material = \"wall\"", "emit = { line = 800.0 }", &[]);
+    assert!(
+        e.starts_with("scenes/test.toml:13:") && e.contains("key `shapes.0.emit.line`: "),
+        "{e}"
+    );
+    let e = kinds_error("albedo = 0.4", "albedo = { line = 532.0 }", &[]);
+    assert!(
+        e.starts_with("scenes/test.toml:8:") && e.contains("key `materials.wall.albedo`: "),
+        "{e}"
+    );
+    assert!(e.contains("spectral lines"), "{e}");
+}

@@ -127,3 +127,180 @@ fn power_law_bin_averages_are_exact() {
         }
     }
 }
+
+// ---- Spectral grids with lines -------------------------------------------------------------
+
+use brume::colour::{Observer, XyzWeights};
+use brume::spectrum::{Bin, GridError, LINE_WIDTH, MAX_BINS, Spectrum, lines};
+
+/// Grids with lines in awkward places: on an equal edge (530 = 380 + 12 x 12.5), a hair from
+/// one, two lines closer than a line width, at and next to the ends of the range, and bins
+/// narrower than a line.
+fn line_grids() -> Vec<(usize, f64, f64, Vec<f64>)> {
+    vec![
+        (32, 380.0, 780.0, vec![532.0]),
+        (32, 380.0, 780.0, vec![530.0]),
+        (32, 380.0, 780.0, vec![530.03, 633.0, 450.0]),
+        (32, 380.0, 780.0, vec![532.0, 532.05, 532.0]),
+        (32, 380.0, 780.0, vec![380.0, 780.0]),
+        (32, 380.0, 780.0, vec![380.07, 779.99]),
+        (24, 380.0, 780.0, vec![405.0, 445.5, 589.0, 589.6, 656.3]),
+        (16, 500.0, 500.5, vec![500.2]),
+    ]
+}
+
+#[test]
+fn line_grids_cover_the_range_without_gaps_or_overlaps() {
+    for (uniform, lo, hi, ls) in line_grids() {
+        let g = SpectralGrid::with_lines(uniform, lo, hi, &ls).unwrap();
+        let equal = SpectralGrid::new(uniform, lo, hi);
+        let ctx = format!("{uniform} bins over {lo}-{hi} with lines {ls:?}");
+        assert!(g.n <= MAX_BINS, "{ctx}: {} bins", g.n);
+        assert_eq!(g.edges(0).0, lo, "{ctx}");
+        assert_eq!(g.edges(g.n - 1).1, hi, "{ctx}");
+        let mut total = 0.0;
+        for i in 0..g.n {
+            let (a, b) = g.edges(i);
+            assert!(b > a, "{ctx}: bin {i} is empty");
+            assert_eq!(g.bin_width(i), b - a, "{ctx}: bin {i}");
+            if i + 1 < g.n {
+                assert_eq!(b, g.edges(i + 1).0, "{ctx}: gap or overlap after bin {i}");
+            }
+            if let Bin::Band { .. } = g.bin(i) {
+                // No sliver bands: at least half a line width (or half an equal bin).
+                let eps = 0.5 * LINE_WIDTH.min(equal.bin_width(0));
+                assert!(b - a >= eps * 0.999, "{ctx}: sliver band {a}-{b}");
+            }
+            total += b - a;
+        }
+        assert!(
+            (total - (hi - lo)).abs() < 1e-9,
+            "{ctx}: widths sum to {total}"
+        );
+        for &l in &ls {
+            let i = g
+                .line_bin(l)
+                .unwrap_or_else(|| panic!("{ctx}: no bin for {l}"));
+            assert_eq!(g.bin_of(l), Some(i), "{ctx}");
+            let (a, b) = g.edges(i);
+            assert!(
+                a <= l && l <= b && b - a <= 1.5 * LINE_WIDTH,
+                "{ctx}: {a}-{b}"
+            );
+            assert_eq!(
+                g.bin(i),
+                Bin::Line {
+                    lambda: l,
+                    lo: a,
+                    hi: b
+                }
+            );
+            assert_eq!(g.centre(i), l);
+        }
+        // Equal edges away from every line keep their exact values.
+        for k in 1..uniform {
+            let e = equal.edges(k).0;
+            if ls.iter().all(|l| (e - l).abs() > LINE_WIDTH) {
+                assert!((0..g.n).any(|i| g.edges(i).0 == e), "{ctx}: lost edge {e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_grid_without_lines_is_the_equal_grid_exactly() {
+    let g = SpectralGrid::with_lines(24, 380.0, 780.0, &[]).unwrap();
+    let e = SpectralGrid::new(24, 380.0, 780.0);
+    assert_eq!(g, e);
+    for i in 0..24 {
+        let w = (780.0 - 380.0) / 24.0;
+        assert_eq!(
+            g.edges(i),
+            (380.0 + w * i as f64, 380.0 + w * (i + 1) as f64)
+        );
+        assert_eq!(g.bin_width(i), w);
+    }
+    assert!(g.lines().is_empty() && g.uniform_bins() == 24);
+}
+
+#[test]
+fn bad_lines_are_errors() {
+    let grid = |ls: &[f64]| SpectralGrid::with_lines(32, 380.0, 780.0, ls);
+    assert!(matches!(grid(&[1064.0]), Err(GridError::Outside { .. })));
+    assert!(matches!(
+        grid(&[-532.0]),
+        Err(GridError::NotAWavelength { .. })
+    ));
+    assert!(matches!(
+        grid(&[f64::NAN]),
+        Err(GridError::NotAWavelength { .. })
+    ));
+    assert!(matches!(
+        grid(&[532.0, 532.001]),
+        Err(GridError::TooClose { .. })
+    ));
+    // Each line inside an equal bin adds two bins: 16 lines fit in 64, a 17th does not.
+    let many: Vec<f64> = (0..17).map(|k| 386.0 + 12.5 * k as f64).collect();
+    assert_eq!(grid(&many[..16]).unwrap().n, 64);
+    let e = grid(&many).unwrap_err();
+    assert!(
+        matches!(e, GridError::TooManyBins { needed: 66, .. }),
+        "{e}"
+    );
+}
+
+#[test]
+fn line_bins_hold_values_at_the_line_and_lines_keep_their_power() {
+    let g = SpectralGrid::with_lines(32, 380.0, 780.0, &[532.0, 633.3]).unwrap();
+    let i = g.line_bin(532.0).unwrap();
+    // A reflectance with a kink at the line: the band average would differ, the line's
+    // value must not.
+    let r = pl(&[380.0, 532.0, 780.0], &[0.2, 0.9, 0.1]);
+    assert_eq!(r.bin_averages(&g, Extrapolation::Clamp)[i], 0.9);
+    let ints = r.bin_integrals(&g, Extrapolation::Clamp);
+    assert!((ints[i] - 0.9 * g.bin_width(i)).abs() < 1e-15);
+    // Bands stay exact averages.
+    let b = r.bin_averages(&g, Extrapolation::Clamp);
+    for k in (0..g.n).filter(|&k| matches!(g.bin(k), Bin::Band { .. })) {
+        let (a, z) = g.edges(k);
+        let want = quad(|l| r.eval(l, Extrapolation::Clamp), a, z) / (z - a);
+        assert!((b[k] as f64 - want).abs() < 1e-5, "band {k}");
+    }
+    let p = power_law(2.0, 550.0, 4.0, &g);
+    assert!((p[i] as f64 - 2.0 * (532.0f64 / 550.0).powi(-4)).abs() < 1e-6);
+    // Lines' powers come back from the grid's integral (value x width summed).
+    let s = lines(&[(532.0, 1.0), (633.3, 0.25)], &g).unwrap();
+    assert!((g.integral(&s) - 1.25).abs() < 1e-6, "{}", g.integral(&s));
+    assert!(
+        lines(&[(600.0, 1.0)], &g).is_err(),
+        "no bin for a line the grid lacks"
+    );
+}
+
+/// colour-science 0.4.7, `colour.XYZ_to_xy(colour.wavelength_to_XYZ(532))` with the CIE 1931
+/// 2 degree observer (its 1 nm table holds 532 nm: x-bar 0.18914, y-bar 0.8849624, z-bar
+/// 0.03693564).
+const XY_532: [f64; 2] = [0.170_237_2, 0.796_518_5];
+
+fn xy(xyz: [f64; 3]) -> [f64; 2] {
+    let s = xyz[0] + xyz[1] + xyz[2];
+    [xyz[0] / s, xyz[1] / s]
+}
+
+#[test]
+fn a_line_has_the_chromaticity_of_its_wavelength() {
+    let g = SpectralGrid::with_lines(32, 380.0, 780.0, &[532.0]).unwrap();
+    let w = XyzWeights::new(Observer::Cie1931, &g).unwrap();
+    let got = xy(w.xyz_of(&lines(&[(532.0, 1.0)], &g).unwrap()));
+    assert!(
+        (got[0] - XY_532[0]).abs() < 1e-6 && (got[1] - XY_532[1]).abs() < 1e-6,
+        "{got:?}"
+    );
+    // The same power in the 12.5 nm bin around 532 (the grid without lines) is far off.
+    let e = SpectralGrid::default();
+    let bin = e.bin_of(532.0).unwrap();
+    let before = xy(XyzWeights::new(Observer::Cie1931, &e)
+        .unwrap()
+        .xyz_of(&Spectrum::single(bin, 1.0)));
+    assert!((before[0] - XY_532[0]).abs() > 0.02, "{before:?}");
+}

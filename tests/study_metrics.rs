@@ -54,11 +54,7 @@ fn efficiency_is_inverse_of_mse_times_time() {
 
 #[test]
 fn mean_noise_averages_standard_errors() {
-    let grid = SpectralGrid {
-        n: 2,
-        lambda_min: 380.0,
-        lambda_max: 780.0,
-    };
+    let grid = SpectralGrid::new(2, 380.0, 780.0);
     let mut img = SpectralImage::new(2, 1, grid);
     assert_eq!(mean_noise(&img), 0.0);
     img.noise = Some(vec![0.1, 0.2, 0.3, 0.4]);
@@ -72,11 +68,7 @@ fn mean_noise_averages_standard_errors() {
 
 #[test]
 fn reference_round_trips_exactly() {
-    let grid = SpectralGrid {
-        n: 3,
-        lambda_min: 400.0,
-        lambda_max: 700.0,
-    };
+    let grid = SpectralGrid::new(3, 400.0, 700.0);
     let mut img = SpectralImage::new(2, 2, grid);
     img.data = (0..12).map(|i| i as f32 * 0.37 + 1e-9).collect();
     img.noise = Some((0..12).map(|i| i as f32 * 0.01).collect());

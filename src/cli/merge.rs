@@ -76,7 +76,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
 fn check_parts(parts: &[(PathBuf, FilmHeader)]) -> anyhow::Result<()> {
     let (first_path, first) = &parts[0];
     let first_name = first_path.display().to_string();
-    let shape = |h: &FilmHeader| (h.width, h.height, h.grid);
+    let shape = |h: &FilmHeader| (h.width, h.height, h.grid.clone());
     for w in parts.windows(2) {
         let ((pa, a), (pb, b)) = (&w[0], &w[1]);
         film_files::check_same_render(&b.id, &pb.display().to_string(), &first.id, &first_name)?;

@@ -13,8 +13,12 @@ use brume::spectrum::SpectralGrid;
 pub struct SpectrumArgs {
     /// Spectrum: a CSV file (`wavelength_nm,<column>...`, optionally `FILE:COLUMN`) or a
     /// built-in name (D65, D50, A, F2, F11, LED-B1, colorchecker:<patch name or 1-24>).
-    #[arg(required_unless_present = "matrices")]
+    #[arg(required_unless_present_any = ["matrices", "line"])]
     pub spectrum: Option<String>,
+    /// A spectral line instead of a spectrum: `NM` or `NM:POWER` (relative power, default 1);
+    /// repeat for several lines. The line gets its own narrow bin, as in a scene.
+    #[arg(long, value_parser = parse_line, conflicts_with = "spectrum")]
+    pub line: Vec<(f64, f64)>,
     /// Data column to use from a multi-column file (name or 1-based index).
     #[arg(long)]
     pub column: Option<String>,
@@ -68,12 +72,22 @@ pub fn run(args: &SpectrumArgs) -> anyhow::Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     }
+    let label = || {
+        let nm = |&(l, p): &(f64, f64)| match p == 1.0 {
+            true => format!("{l} nm"),
+            false => format!("{l} nm x {p}"),
+        };
+        let lines: Vec<String> = args.line.iter().map(nm).collect();
+        format!("line {}", lines.join(", "))
+    };
+    let wavelengths: Vec<f64> = args.line.iter().map(|l| l.0).collect();
     let request = SpectrumRequest {
-        spectrum: args.spectrum.clone().unwrap_or_default(),
+        spectrum: args.spectrum.clone().unwrap_or_else(label),
+        lines: args.line.clone(),
         column: args.column.clone(),
         illuminant: args.illuminant.clone(),
         observer: args.observer,
-        grid: describe::check_grid(args.bins, args.lambda_min, args.lambda_max)?,
+        grid: describe::check_grid(args.bins, args.lambda_min, args.lambda_max, &wavelengths)?,
         cat: args.cat.into(),
     };
     let colour = describe::spectrum_colour(&request)?;
@@ -86,4 +100,28 @@ pub fn run(args: &SpectrumArgs) -> anyhow::Result<ExitCode> {
         }
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// `NM` or `NM:POWER`: a wavelength (finite, > 0) and a relative power (finite, >= 0).
+fn parse_line(text: &str) -> Result<(f64, f64), String> {
+    let (nm, power) = text.split_once(':').unwrap_or((text, "1"));
+    let nm: f64 = nm
+        .trim()
+        .parse()
+        .map_err(|_| format!("{nm:?} is not a wavelength in nm"))?;
+    let power: f64 = power
+        .trim()
+        .parse()
+        .map_err(|_| format!("{power:?} is not a power"))?;
+    if !(nm.is_finite() && nm > 0.0) {
+        return Err(format!(
+            "a line's wavelength must be finite and > 0 nm, got {nm}"
+        ));
+    }
+    if !(power.is_finite() && power >= 0.0) {
+        return Err(format!(
+            "a line's power must be finite and >= 0, got {power}"
+        ));
+    }
+    Ok((nm, power))
 }

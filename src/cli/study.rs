@@ -212,7 +212,7 @@ fn write_results(
 }
 
 fn image_of(r: &Reference) -> brume::film::SpectralImage {
-    let mut img = brume::film::SpectralImage::new(r.width, r.height, r.grid);
+    let mut img = brume::film::SpectralImage::new(r.width, r.height, r.grid.clone());
     img.data = r.total.clone();
     img
 }

@@ -5,13 +5,17 @@ use serde_json::json;
 
 use super::matrix::{self, Mat3};
 use super::{ACES_XY, Cat, ColourError, ColourSpace, D65_XY, Observer, XyzWeights, srgb_encode};
-use crate::spectrum::{Extrapolation, MAX_BINS, SpectralGrid, resolve};
+use crate::spectrum::{Extrapolation, MAX_BINS, SpectralGrid, lines as line_spectrum, resolve};
 
 /// A spectrum to describe and how.
 #[derive(Clone, Debug)]
 pub struct SpectrumRequest {
-    /// A CSV file (optionally `FILE:COLUMN`) or a built-in name.
+    /// A CSV file (optionally `FILE:COLUMN`) or a built-in name; only a label when `lines`
+    /// are given.
     pub spectrum: String,
+    /// Spectral lines (nm, relative power) to describe instead: an emission, each line in its
+    /// own narrow bin of `grid` (see [`check_grid`]).
+    pub lines: Vec<(f64, f64)>,
     /// Data column of a multi-column file (name or 1-based index).
     pub column: Option<String>,
     /// Treat the spectrum as a reflectance under this illuminant (else it is an emission).
@@ -54,11 +58,13 @@ pub fn matrices() -> serde_json::Value {
     })
 }
 
-/// Checks that a spectral grid is one brume can use.
+/// Checks that a spectral grid is one brume can use: `bins` equal bins split around a narrow
+/// bin at each of `lines` (nm).
 pub fn check_grid(
     bins: usize,
     lambda_min: f64,
     lambda_max: f64,
+    lines: &[f64],
 ) -> Result<SpectralGrid, ColourError> {
     let valid = (1..=MAX_BINS).contains(&bins) && lambda_max > lambda_min && lambda_min > 0.0;
     if !valid {
@@ -66,20 +72,31 @@ pub fn check_grid(
             "--bins must be 1..={MAX_BINS} and 0 < --lambda-min < --lambda-max"
         )));
     }
-    Ok(SpectralGrid::new(bins, lambda_min, lambda_max))
+    SpectralGrid::with_lines(bins, lambda_min, lambda_max, lines)
+        .map_err(|e| ColourError::Other(format!("--line: {e}")))
 }
 
 /// Colour of the spectrum, computed exactly as the film does: bin averages times the CMF bin
 /// integrals. Reflectances are scaled so the perfect white under the illuminant has Y = 100
 /// (colour-science's convention); emission spectra so a constant radiance of 1 has Y = 1.
 pub fn spectrum_colour(req: &SpectrumRequest) -> Result<SpectrumColour, ColourError> {
-    let grid = req.grid;
-    let s = resolve(&req.spectrum, req.column.as_deref(), false)?
-        .bin_averages(&grid, Extrapolation::Clamp);
-    let w = XyzWeights::new(req.observer, &grid)?;
+    let grid = &req.grid;
+    let s = if req.lines.is_empty() {
+        resolve(&req.spectrum, req.column.as_deref(), false)?
+            .bin_averages(grid, Extrapolation::Clamp)
+    } else if req.illuminant.is_some() {
+        return Err(ColourError::Other(
+            "spectral lines are an emission: --illuminant does not apply".into(),
+        ));
+    } else {
+        line_spectrum(&req.lines, grid).map_err(|l| {
+            ColourError::Other(format!("the grid has no bin for the line at {l} nm"))
+        })?
+    };
+    let w = XyzWeights::new(req.observer, grid)?;
     let (xyz, white_xy, kind) = match &req.illuminant {
         Some(ill) => {
-            let e = resolve(ill, None, false)?.bin_averages(&grid, Extrapolation::Clamp);
+            let e = resolve(ill, None, false)?.bin_averages(grid, Extrapolation::Clamp);
             let white = w.xyz_of(&e);
             if white[1] <= 0.0 {
                 return Err(ColourError::Other(format!(
@@ -135,6 +152,7 @@ impl SpectrumColour {
             "bins": g.n,
             "lambda_min": g.lambda_min,
             "lambda_max": g.lambda_max,
+            "lines": g.lines(),
             "XYZ": self.xyz,
             "xy": self.xy,
             "white_xy": self.white_xy,

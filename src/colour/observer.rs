@@ -47,7 +47,9 @@ impl Observer {
 }
 
 /// Per-bin weights turning bin-averaged spectral values into XYZ:
-/// `XYZ = sum_i value_i * w_i`, with `w_i = (integral of cmf over bin i) / y_integral`.
+/// `XYZ = sum_i value_i * w_i`, with `w_i = (integral of cmf over bin i) / y_integral`; in a
+/// line bin the integral is the CMF at the line times the bin's width, so a line's power
+/// (value times width) is weighted exactly at its wavelength.
 #[derive(Clone, Debug)]
 pub struct XyzWeights {
     pub w: Vec<[f64; 3]>,

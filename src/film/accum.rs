@@ -198,7 +198,7 @@ impl Film {
     /// Adds the passes of `other`, which must directly follow or precede this film's range.
     /// The result is bit-identical to rendering the union in one run.
     pub fn merge(&mut self, other: &Film) -> Result<(), MergeError> {
-        if (self.width, self.height, self.grid) != (other.width, other.height, other.grid) {
+        if (self.width, self.height, &self.grid) != (other.width, other.height, &other.grid) {
             return Err(MergeError::Shape);
         }
         if self.passes > 0 && other.passes > 0 {
@@ -232,7 +232,7 @@ impl Film {
     pub fn image(&self) -> SpectralImage {
         let px = self.width * self.height * self.grid.n;
         let p = self.passes.max(1) as f64;
-        let mut img = SpectralImage::new(self.width, self.height, self.grid);
+        let mut img = SpectralImage::new(self.width, self.height, self.grid.clone());
         let (sum_m, sum_s) = self.sum.split_at(px);
         let mut noise = vec![0.0f32; px];
         for i in 0..px {
@@ -271,11 +271,7 @@ mod tests {
     use super::*;
 
     fn grid() -> SpectralGrid {
-        SpectralGrid {
-            n: 2,
-            lambda_min: 400.0,
-            lambda_max: 700.0,
-        }
+        SpectralGrid::new(2, 400.0, 700.0)
     }
 
     fn pass(values: &[f32]) -> PassBuffer {

@@ -2,8 +2,9 @@
 //! `--resume`) and as the part file of a distributed render (`--pass-range`, `brume merge`).
 //!
 //! Layout (little-endian): magic `BRUMEFLM`, format version (u32), seed, scene hash, first
-//! pass, passes, dropped (u64 each), width, height, bins (u32), lambda min and max (f64), the
-//! length of a UTF-8 JSON text (u32) and the text (the render's identity: scene description
+//! pass, passes, dropped (u64 each), width, height, bins (u32), lambda min and max (f64), in
+//! version 3 only the spectral grid's equal bins and line count (u32 each) and its lines (f64
+//! each), the length of a UTF-8 JSON text (u32) and the text (the render's identity: scene description
 //! and sampling settings, see [`FilmId`]), the sums and sums of squares (i128 each), and an
 //! FNV-1a 64 checksum of everything before it, so a truncated or damaged file is refused.
 //!
@@ -17,14 +18,17 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::spectrum::SpectralGrid;
+use crate::spectrum::{MAX_BINS, SpectralGrid};
 
 use super::identity::{self, Fnv, Sampling};
 use super::{Film, FilmId, LAYERS, atomic};
 
 const MAGIC: &[u8; 8] = b"BRUMEFLM";
-/// Version 2 added the identity JSON (description and sampling settings).
+/// Version 2 added the identity JSON (description and sampling settings). Films of grids
+/// without spectral lines are still written as version 2, byte for byte as before.
 pub const VERSION: u32 = 2;
+/// Version 3 is version 2 plus the spectral lines whose narrow bins split the equal bins.
+pub const VERSION_LINES: u32 = 3;
 /// Films larger than this many values (pixels x bins) are refused on reading: 2^32 values are
 /// 206 GB of sums, beyond any machine brume runs on.
 pub const MAX_VALUES: u64 = 1 << 32;
@@ -77,7 +81,9 @@ pub enum FilmFileError {
     },
     #[error("{path}: not a brume film file")]
     Magic { path: PathBuf },
-    #[error("{path}: film file version {found}, this brume reads version {VERSION}")]
+    #[error(
+        "{path}: film file version {found}, this brume reads versions {VERSION} and {VERSION_LINES}"
+    )]
     Version { path: PathBuf, found: u32 },
     #[error("{path}: damaged or truncated film file ({what})")]
     Damaged { path: PathBuf, what: &'static str },
@@ -127,8 +133,14 @@ pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError>
 }
 
 fn encode(w: &mut impl Write, f: &Film, id: &FilmId, identity: &[u8]) -> std::io::Result<()> {
+    let lines = f.grid.lines();
+    let version = if lines.is_empty() {
+        VERSION
+    } else {
+        VERSION_LINES
+    };
     w.write_all(MAGIC)?;
-    w.write_all(&VERSION.to_le_bytes())?;
+    w.write_all(&version.to_le_bytes())?;
     for v in [id.seed, id.scene_hash, f.first, f.passes, f.dropped] {
         w.write_all(&v.to_le_bytes())?;
     }
@@ -138,6 +150,14 @@ fn encode(w: &mut impl Write, f: &Film, id: &FilmId, identity: &[u8]) -> std::io
     }
     w.write_all(&f.grid.lambda_min.to_le_bytes())?;
     w.write_all(&f.grid.lambda_max.to_le_bytes())?;
+    if !lines.is_empty() {
+        for v in [f.grid.uniform_bins(), lines.len()] {
+            w.write_all(&(v as u32).to_le_bytes())?;
+        }
+        for l in lines {
+            w.write_all(&l.to_le_bytes())?;
+        }
+    }
     let len = u32::try_from(identity.len()).map_err(|_| std::io::Error::other("identity"))?;
     w.write_all(&len.to_le_bytes())?;
     w.write_all(identity)?;
@@ -235,24 +255,37 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         });
     }
     let found = u32::from_le_bytes([head[8], head[9], head[10], head[11]]);
-    if found != VERSION {
+    if found != VERSION && found != VERSION_LINES {
         let path = path.to_path_buf();
         return Err(FilmFileError::Version { path, found });
     }
     let [seed, scene_hash, first, passes, dropped] = [(); 5].map(|()| src.u64());
     let [width, height, n] = [(); 3].map(|()| src.u32());
     let (lambda_min, lambda_max) = (src.u64()?, src.u64()?);
+    let (width, height, n) = (width?, height?, n?);
+    let (uniform, lines) = match found {
+        VERSION_LINES => read_lines(src)?,
+        _ => (n, Vec::new()),
+    };
+    let (lambda_min, lambda_max) = (f64::from_bits(lambda_min), f64::from_bits(lambda_max));
+    let grid = grid(n, uniform, lambda_min, lambda_max, &lines)
+        .ok_or_else(|| damaged(path, "bad spectral grid"))?;
     let identity_len = src.u32()?;
     if identity_len > MAX_IDENTITY {
         return Err(damaged(path, "absurd identity size"));
     }
-    let (width, height, n) = (width? as u64, height? as u64, n? as u64);
+    let (width, height, n) = (width as u64, height as u64, n as u64);
     let values = (width * height)
         .checked_mul(n)
         .filter(|v| *v <= MAX_VALUES)
         .ok_or_else(|| damaged(path, "absurd film size"))?;
     let data = (LAYERS as u64 + 1) * values * 16;
-    if FIXED_HEADER + identity_len as u64 + data + 8 != file_bytes {
+    let line_bytes = if lines.is_empty() {
+        0
+    } else {
+        8 + 8 * lines.len() as u64
+    };
+    if FIXED_HEADER + line_bytes + identity_len as u64 + data + 8 != file_bytes {
         return Err(damaged(path, "file size does not match the header"));
     }
     let mut identity = vec![0u8; identity_len as usize];
@@ -265,15 +298,33 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         dropped: dropped?,
         width: width as usize,
         height: height as usize,
-        grid: SpectralGrid {
-            n: n as usize,
-            lambda_min: f64::from_bits(lambda_min),
-            lambda_max: f64::from_bits(lambda_max),
-        },
+        grid,
         identity,
         values: values as usize,
         file_bytes,
     })
+}
+
+/// A version 3 header's equal-bin count and lines (at most `MAX_BINS` of them).
+fn read_lines(src: &mut Source) -> Result<(u32, Vec<f64>), FilmFileError> {
+    let (uniform, count) = (src.u32()?, src.u32()?);
+    if count == 0 || count as usize > MAX_BINS {
+        return Err(damaged(src.path, "bad spectral grid"));
+    }
+    let lines = (0..count)
+        .map(|_| src.u64().map(f64::from_bits))
+        .collect::<Result<_, _>>()?;
+    Ok((uniform, lines))
+}
+
+/// The grid a header describes, if it is one brume makes and has `n` bins.
+fn grid(n: u32, uniform: u32, min: f64, max: f64, lines: &[f64]) -> Option<SpectralGrid> {
+    let uniform = uniform as usize;
+    if !((1..=MAX_BINS).contains(&uniform) && min.is_finite() && max.is_finite() && max > min) {
+        return None;
+    }
+    let grid = SpectralGrid::with_lines(uniform, min, max, lines).ok()?;
+    (grid.n == n as usize).then_some(grid)
 }
 
 fn header(raw: Raw, path: &Path) -> Result<FilmHeader, FilmFileError> {
@@ -345,13 +396,13 @@ mod tests {
     use crate::film::PassBuffer;
 
     fn sample() -> FilmFile {
-        let grid = SpectralGrid {
-            n: 3,
-            lambda_min: 380.0,
-            lambda_max: 730.0,
-        };
+        sample_on(SpectralGrid::new(3, 380.0, 730.0))
+    }
+
+    fn sample_on(grid: SpectralGrid) -> FilmFile {
+        let n = grid.n;
         let mut film = Film::starting_at(2, 2, grid, 7);
-        let mut b = PassBuffer::new(4, 3);
+        let mut b = PassBuffer::new(4, n);
         b.data
             .iter_mut()
             .enumerate()
@@ -382,22 +433,41 @@ mod tests {
     }
 
     #[test]
+    fn a_grid_with_lines_round_trips_as_version_3_and_without_as_version_2() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("a.brume");
+        let grid = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0, 633.0]).unwrap();
+        let f = sample_on(grid);
+        write(&p, &f.film, &f.id).unwrap();
+        let back = read(&p).unwrap();
+        assert_eq!(back, f);
+        assert_eq!(back.film.grid.lines(), [532.0, 633.0]);
+        let version =
+            |p: &Path| u32::from_le_bytes(std::fs::read(p).unwrap()[8..12].try_into().unwrap());
+        assert_eq!(version(&p), VERSION_LINES);
+        write(&p, &sample().film, &f.id).unwrap();
+        assert_eq!(version(&p), VERSION);
+    }
+
+    #[test]
     fn damaged_files_are_refused_not_panicked_on() {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("a.brume");
-        let f = sample();
-        write(&p, &f.film, &f.id).unwrap();
-        let good = std::fs::read(&p).unwrap();
-        // Every truncation and a flipped byte at every position is an error, never a panic.
-        for cut in 0..good.len() {
-            std::fs::write(&p, &good[..cut]).unwrap();
-            assert!(read(&p).is_err(), "truncated at {cut}");
-        }
-        for i in 0..good.len() {
-            let mut bad = good.clone();
-            bad[i] ^= 0x10;
-            std::fs::write(&p, &bad).unwrap();
-            assert!(read(&p).is_err(), "flipped byte {i}");
+        let lines = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0]).unwrap();
+        for f in [sample(), sample_on(lines)] {
+            write(&p, &f.film, &f.id).unwrap();
+            let good = std::fs::read(&p).unwrap();
+            // Every truncation and a flipped byte at every position is an error, never a panic.
+            for cut in 0..good.len() {
+                std::fs::write(&p, &good[..cut]).unwrap();
+                assert!(read(&p).is_err(), "truncated at {cut}");
+            }
+            for i in 0..good.len() {
+                let mut bad = good.clone();
+                bad[i] ^= 0x10;
+                std::fs::write(&p, &bad).unwrap();
+                assert!(read(&p).is_err(), "flipped byte {i}");
+            }
         }
     }
 

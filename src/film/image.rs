@@ -20,8 +20,8 @@ impl SpectralImage {
         Self {
             width,
             height,
-            grid,
             data: vec![0.0; width * height * grid.n],
+            grid,
             noise: None,
             layers: Vec::new(),
         }

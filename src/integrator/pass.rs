@@ -50,7 +50,7 @@ impl<'a> Renderer<'a> {
         Self {
             scene,
             seed,
-            film: Film::new(w as usize, h as usize, scene.grid),
+            film: Film::new(w as usize, h as usize, scene.grid.clone()),
             radius: integrator.radius.at(0),
             integrator,
             stats: Stats::default(),
@@ -76,7 +76,7 @@ impl<'a> Renderer<'a> {
         film: Film,
     ) -> Result<Self, String> {
         let mut r = Self::new(scene, integrator, seed);
-        if (film.width, film.height, film.grid) != (r.film.width, r.film.height, r.film.grid) {
+        if (film.width, film.height, &film.grid) != (r.film.width, r.film.height, &r.film.grid) {
             return Err(format!(
                 "the film is {}x{} pixels with {} bins, the scene renders {}x{} with {}",
                 film.width, film.height, film.grid.n, r.film.width, r.film.height, r.film.grid.n

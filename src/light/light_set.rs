@@ -2,6 +2,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{EmissionSample, Light};
 use crate::geometry::Geometry;
+use crate::spectrum::SpectralGrid;
 
 /// How a light's direct light reaches the image when the integrator uses next-event estimation
 /// (`direct` of a light or an emitting shape).
@@ -18,7 +19,8 @@ pub enum DirectChoice {
     Photons,
 }
 
-/// All lights, picked for forward rays in proportion to their total power (summed over bins).
+/// All lights, picked for forward rays in proportion to their total power (their bins weighted
+/// by width, [`SpectralGrid::weighted_sum`]: a line's narrow bin holds a high density).
 #[derive(Clone, Debug)]
 pub struct LightSet {
     lights: Vec<Light>,
@@ -30,11 +32,11 @@ pub struct LightSet {
 }
 
 impl LightSet {
-    pub fn new(lights: Vec<Light>, geometry: &Geometry) -> LightSet {
+    pub fn new(lights: Vec<Light>, geometry: &Geometry, grid: &SpectralGrid) -> LightSet {
         let weights: Vec<f64> = lights
             .iter()
             .map(|l| {
-                let p = l.power(geometry).sum() as f64;
+                let p = grid.weighted_sum(&l.power(geometry));
                 if p.is_finite() && p > 0.0 { p } else { 0.0 }
             })
             .collect();

@@ -1,8 +1,9 @@
 use super::MediumError;
-use crate::spectrum::{SpectralGrid, Spectrum};
+use crate::spectrum::{Bin, SpectralGrid, Spectrum};
 
 /// Per-bin coefficients of the power law `sigma(lambda) = k (lambda / lambda0)^(-p)` (1/m), each
-/// bin holding the exact average of the law over the bin (the grid's bin convention). `p = 4` is
+/// band holding the exact average of the law over it and each line bin its value at the line
+/// (the grid's bin convention). `p = 4` is
 /// Rayleigh-like, `p ~ 0..1.5` hazes and fogs, `p = 0` grey.
 pub fn power_law(
     grid: &SpectralGrid,
@@ -27,7 +28,13 @@ pub fn power_law(
     let (k, l0, p) = (k as f64, lambda0_nm as f64, p as f64);
     let mut s = Spectrum::ZERO;
     for i in 0..grid.n {
-        let (a, b) = grid.edges(i);
+        let (a, b) = match grid.bin(i) {
+            Bin::Band { lo, hi } => (lo, hi),
+            Bin::Line { lambda, .. } => {
+                s.0[i] = (k * (lambda / l0).powf(-p)) as f32;
+                continue;
+            }
+        };
         // ∫_a^b (x/l0)^-p dx / (b - a), with x = lambda.
         let integral = if (p - 1.0).abs() < 1e-9 {
             l0 * (b / a).ln()

@@ -33,11 +33,11 @@ pub fn build(scene: &LoadedScene) -> Result<Scene, SceneError> {
 /// large as the scene): the command line prints those before rendering.
 pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarning>), SceneError> {
     let d = &scene.desc;
-    let grid = d.film.grid();
+    let grid = scene.grid()?;
     let b = Builder::new(
         scene.source(),
         Inputs {
-            grid,
+            grid: grid.clone(),
             spectra: &d.spectra,
             materials: d.materials.keys().map(String::as_str).collect(),
             media: d.media.keys().map(String::as_str).collect(),
@@ -69,7 +69,7 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
         lights.push(l.build(&b, &format!("lights.{i}"))?);
         direct.push(l.common.direct);
     }
-    let lights = LightSet::new(lights, &geometry).with_direct(direct);
+    let lights = LightSet::new(lights, &geometry, &grid).with_direct(direct);
     let camera = d.camera.build();
     let (world_min, world_max) = world_box(&geometry, &camera, d.integrator.radius);
     let warnings = warnings(scene, &geometry, &lights);

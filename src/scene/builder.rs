@@ -34,8 +34,8 @@ impl<'a> Builder<'a> {
     pub fn new(source: Source<'a>, inputs: Inputs<'a>) -> Self {
         Builder {
             source,
+            spectra: SpectrumResolver::new(source, inputs.grid.clone(), inputs.spectra),
             grid: inputs.grid,
-            spectra: SpectrumResolver::new(source, inputs.grid, inputs.spectra),
             materials: inputs.materials,
             media: inputs.media,
             outside: inputs.outside,

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::source::Source;
-use super::spectrum_desc::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::spectrum_desc::{LinesDesc, RgbKind, SpectrumDesc, SpectrumRef};
 
 /// One problem: the dotted key it is about and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -143,8 +143,14 @@ impl<'a> Checker<'a> {
         }
     }
 
+    /// A spectrum reference that is not an emission: spectral lines are refused.
     pub fn spectrum_ref(&mut self, key: &str, r: &SpectrumRef) {
         match r {
+            SpectrumRef::Lines(_) => self.fail(
+                key,
+                "spectral lines (`line`, `lines`) are an emission: give them as a light's \
+                 `spectrum` or a shape's `emit`",
+            ),
             SpectrumRef::Constant(v) => self.non_negative(key, *v),
             SpectrumRef::Rgb(rgb) => {
                 if rgb.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
@@ -169,6 +175,45 @@ impl<'a> Checker<'a> {
         }
     }
 
+    /// An emission spectrum (a light's `spectrum`, a shape's `emit`): any reference, lines
+    /// included. Whether lines lie in the film's range is checked with the spectral grid.
+    pub fn emission_ref(&mut self, key: &str, r: &SpectrumRef) {
+        match r {
+            SpectrumRef::Lines(l) => self.lines(key, l),
+            SpectrumRef::Constant(_) | SpectrumRef::Named(_) | SpectrumRef::Rgb(_) => {
+                self.spectrum_ref(key, r)
+            }
+        }
+    }
+
+    fn lines(&mut self, key: &str, l: &LinesDesc) {
+        if l.line.is_some() == l.lines.is_some() {
+            return self.fail(
+                key,
+                "give either `line = <nm>` or `lines = [[<nm>, <power>], ...]`",
+            );
+        }
+        let entries = l.entries();
+        if entries.is_empty() {
+            return self.fail(format!("{key}.lines"), "needs at least one line");
+        }
+        for e in &entries {
+            if !(e.lambda.is_finite() && e.lambda > 0.0) {
+                let message = format!(
+                    "a line's wavelength must be finite and > 0 nm, got {}",
+                    e.lambda
+                );
+                self.fail(format!("{key}.{}", e.lambda_key), message);
+            }
+            if let Some(pk) = &e.power_key {
+                self.non_negative(&format!("{key}.{pk}"), e.power);
+            }
+        }
+        if entries.iter().all(|e| e.power == 0.0) {
+            self.fail(format!("{key}.lines"), "the lines' powers are all zero");
+        }
+    }
+
     /// A reflectance (an albedo): a spectrum reference whose constant or RGB form is at most 1
     /// unless the material allows energy gain. Named spectra are checked once resolved.
     pub fn reflectance_ref(&mut self, key: &str, r: &SpectrumRef, allow_gain: bool) {
@@ -176,7 +221,7 @@ impl<'a> Checker<'a> {
         let max = match r {
             SpectrumRef::Constant(v) => *v,
             SpectrumRef::Rgb(rgb) => rgb.iter().copied().fold(0.0, f64::max),
-            SpectrumRef::Named(_) => return,
+            SpectrumRef::Named(_) | SpectrumRef::Lines(_) => return,
         };
         if max > 1.0 && !allow_gain {
             self.fail(key, above_one(max));

@@ -13,6 +13,7 @@ mod check;
 pub mod desc;
 mod error;
 mod lights;
+mod lines;
 mod load;
 mod loaded;
 mod materials;

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use super::error::SceneError;
 use super::source::Source;
-use super::spectrum_desc::{RgbKind, SpectrumDesc, SpectrumRef};
+use super::spectrum_desc::{LinesDesc, RgbKind, SpectrumDesc, SpectrumRef};
 use crate::spectrum::{self, Extrapolation, SpectralGrid, Spectrum};
 
 pub struct SpectrumResolver<'a> {
@@ -46,7 +46,26 @@ impl<'a> SpectrumResolver<'a> {
                 Some(desc) => self.named_spectrum(name, desc, kind),
                 None => self.file_or_builtin(name, None, key),
             },
+            SpectrumRef::Lines(l) => match kind {
+                RgbKind::Emission => self.lines(l, key),
+                RgbKind::Reflectance | RgbKind::Unbounded => Err(self.error(
+                    key,
+                    "spectral lines are an emission, not a reflectance or a coefficient".into(),
+                )),
+            },
         }
+    }
+
+    /// Each line's power as the density (per nm) over its narrow bin.
+    fn lines(&self, l: &LinesDesc, key: &str) -> Result<Spectrum, SceneError> {
+        let lines: Vec<(f64, f64)> = l.entries().iter().map(|e| (e.lambda, e.power)).collect();
+        spectrum::lines(&lines, &self.grid).map_err(|lambda| {
+            let message = format!(
+                "the spectral grid has no bin for the line at {lambda} nm (the grid was made \
+                 without it)"
+            );
+            self.error(key, message)
+        })
     }
 
     fn file_or_builtin(

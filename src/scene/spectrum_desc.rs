@@ -1,6 +1,6 @@
 use std::fmt;
 
-use serde::de::{self, SeqAccess, Visitor};
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// How an RGB triple is turned into a spectrum.
@@ -73,13 +73,61 @@ impl SpectrumDesc {
     }
 }
 
+/// Spectral lines, an emission only: `{ line = 532.0 }` (one line) or
+/// `{ lines = [[532.0, 1.0], [1064.0, 0.1]] }` (wavelengths in nm with relative powers). All of
+/// a line's power is at its wavelength; the spectral grid gives each line a narrow bin.
+/// Read by [`SpectrumRef`]'s own deserializer, which refuses other keys.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct LinesDesc {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lines: Option<Vec<[f64; 2]>>,
+}
+
+/// One line of a [`LinesDesc`]: where its wavelength and power are written (keys relative to
+/// the spectrum's own key; the power's is `None` for `line = ...`, whose power is 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LineEntry {
+    pub lambda: f64,
+    pub power: f64,
+    pub lambda_key: String,
+    pub power_key: Option<String>,
+}
+
+impl LinesDesc {
+    /// Every line, in the order written.
+    pub fn entries(&self) -> Vec<LineEntry> {
+        let one = self.line.map(|lambda| LineEntry {
+            lambda,
+            power: 1.0,
+            lambda_key: "line".into(),
+            power_key: None,
+        });
+        let many = self
+            .lines
+            .iter()
+            .flatten()
+            .enumerate()
+            .map(|(i, &[l, p])| LineEntry {
+                lambda: l,
+                power: p,
+                lambda_key: format!("lines.{i}.0"),
+                power_key: Some(format!("lines.{i}.1")),
+            });
+        one.into_iter().chain(many).collect()
+    }
+}
+
 /// Where a spectral parameter comes from: a constant, a name (from `[spectra]` or built in),
-/// or an RGB triple upsampled in the parameter's own way (reflectance, emission or unbounded).
+/// an RGB triple upsampled in the parameter's own way (reflectance, emission or unbounded), or
+/// (emission only) spectral lines.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SpectrumRef {
     Constant(f64),
     Named(String),
     Rgb([f64; 3]),
+    Lines(LinesDesc),
 }
 
 impl Serialize for SpectrumRef {
@@ -88,6 +136,7 @@ impl Serialize for SpectrumRef {
             SpectrumRef::Constant(v) => s.serialize_f64(*v),
             SpectrumRef::Named(n) => s.serialize_str(n),
             SpectrumRef::Rgb(rgb) => rgb.serialize(s),
+            SpectrumRef::Lines(l) => l.serialize(s),
         }
     }
 }
@@ -98,7 +147,10 @@ impl<'de> Deserialize<'de> for SpectrumRef {
         impl<'de> Visitor<'de> for V {
             type Value = SpectrumRef;
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a number, the name of a spectrum, or an RGB array [r, g, b]")
+                f.write_str(
+                    "a number, the name of a spectrum, an RGB array [r, g, b], or lines \
+                     ({ line = 532.0 } or { lines = [[532.0, 1.0], ...] })",
+                )
             }
             fn visit_f64<E: de::Error>(self, v: f64) -> Result<SpectrumRef, E> {
                 Ok(SpectrumRef::Constant(v))
@@ -123,6 +175,24 @@ impl<'de> Deserialize<'de> for SpectrumRef {
                     return Err(de::Error::invalid_length(4, &"3 numbers"));
                 }
                 Ok(SpectrumRef::Rgb(rgb))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<SpectrumRef, A::Error> {
+                let mut l = LinesDesc::default();
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "line" => l.line = Some(map.next_value()?),
+                        "lines" => l.lines = Some(map.next_value()?),
+                        other => {
+                            return Err(de::Error::custom(format!(
+                                "unknown key `{other}`: a table in place of a spectrum holds \
+                                 spectral lines (`line = <nm>` or `lines = [[<nm>, <power>], \
+                                 ...]`); other spectra are a number, a name (e.g. of a \
+                                 [spectra.NAME] table) or an RGB triple"
+                            )));
+                        }
+                    }
+                }
+                Ok(SpectrumRef::Lines(l))
             }
         }
         d.deserialize_any(V)

@@ -11,8 +11,12 @@ pub struct Summary {
     pub file: String,
     pub width: u32,
     pub height: u32,
+    /// Bins in all: the film's equal bins, split around a narrow bin at each line.
     pub bins: usize,
     pub lambda: (f64, f64),
+    /// `film.bins`, and the spectral lines given a bin of their own (nm).
+    pub equal_bins: usize,
+    pub lines: Vec<f64>,
     pub shapes: usize,
     pub lights: usize,
     pub materials: usize,
@@ -30,12 +34,19 @@ pub struct Summary {
 
 pub fn summarise(scene: &LoadedScene) -> Summary {
     let d = &scene.desc;
+    // A loaded scene has a grid (loading validates it); the equal bins stand in otherwise.
+    let (bins, lines) = match scene.grid() {
+        Ok(g) => (g.n, g.lines().to_vec()),
+        Err(_) => (d.film.bins, Vec::new()),
+    };
     Summary {
         file: scene.file.display().to_string(),
         width: d.camera.width,
         height: d.camera.height,
-        bins: d.film.bins,
+        bins,
         lambda: (d.film.lambda_min, d.film.lambda_max),
+        equal_bins: d.film.bins,
+        lines,
         shapes: d.shapes.len(),
         lights: d.lights.len(),
         materials: d.materials.len(),
@@ -49,7 +60,7 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
         memory: crate::integrator::MemoryEstimate::new(
             &d.integrator,
             d.camera.width as u64 * d.camera.height as u64,
-            d.film.bins,
+            bins,
             !d.media.is_empty(),
         ),
         media_report: media_report(scene),
@@ -71,9 +82,12 @@ const MEDIUM_ROWS: usize = 8;
 /// Each medium's phase function and, per range of bins, its extinction, albedo, mean cosine
 /// and visibility (meteorological optical range); droplet fog adds its Lorenz-Mie inputs.
 fn media_report(scene: &LoadedScene) -> Vec<String> {
-    let grid = scene.desc.film.grid();
+    let grid = match scene.grid() {
+        Ok(g) => g,
+        Err(e) => return vec![format!("media: cannot be described: {e}")],
+    };
     let source = scene.source();
-    let spectra = SpectrumResolver::new(source, grid, &scene.desc.spectra);
+    let spectra = SpectrumResolver::new(source, grid.clone(), &scene.desc.spectra);
     let mut out = Vec::new();
     for (name, desc) in &scene.desc.media {
         let b = match build_medium(source, &spectra, &grid, name, desc) {
@@ -102,8 +116,14 @@ fn media_report(scene: &LoadedScene) -> Vec<String> {
         let per = m.n.div_ceil(MEDIUM_ROWS);
         for start in (0..m.n).step_by(per) {
             let end = (start + per).min(m.n);
+            // Averages over the wavelength range the rows' bins cover (bins differ in width
+            // when lines split them).
+            let span = grid.edges(end - 1).1 - grid.edges(start).0;
             let avg = |s: &crate::spectrum::Spectrum| {
-                s.0[start..end].iter().map(|&v| v as f64).sum::<f64>() / (end - start) as f64
+                (start..end)
+                    .map(|i| s.0[i] as f64 * grid.bin_width(i))
+                    .sum::<f64>()
+                    / span
             };
             let st = avg(&m.sigma_t);
             out.push(format!(
@@ -125,11 +145,23 @@ impl fmt::Display for Summary {
         let mib = |b: f64| b / (1024.0 * 1024.0);
         writeln!(f, "scene:        {}", self.file)?;
         writeln!(f, "image:        {} x {} pixels", self.width, self.height)?;
-        writeln!(
+        write!(
             f,
             "spectrum:     {} bins over {}-{} nm",
             self.bins, self.lambda.0, self.lambda.1
         )?;
+        if self.lines.is_empty() {
+            writeln!(f)?;
+        } else {
+            let nm: Vec<String> = self.lines.iter().map(|l| format!("{l}")).collect();
+            writeln!(
+                f,
+                " ({} equal, split around a {} nm bin at each line: {} nm)",
+                self.equal_bins,
+                crate::spectrum::LINE_WIDTH,
+                nm.join(", ")
+            )?;
+        }
         writeln!(
             f,
             "contents:     {} shapes, {} lights, {} materials, {} media, {} named spectra",

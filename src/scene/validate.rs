@@ -16,6 +16,7 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     };
     let mut c = Checker::new(scene.source(), names);
     film(&mut c, &d.film);
+    let film_ok = c.problems.is_empty();
     d.camera.check(&mut c, "camera");
     d.integrator.check(|k, m| c.fail(k, m));
     for (name, s) in &d.spectra {
@@ -31,6 +32,14 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     }
     for (i, l) in d.lights.iter().enumerate() {
         l.check(&mut c, &format!("lights.{i}"));
+    }
+    // Lines the spectral grid cannot hold (outside the range, too many bins); a line already
+    // refused at its key (not a wavelength) is not reported twice.
+    if film_ok
+        && let Err(p) = super::lines::scene_grid(d)
+        && !c.problems.iter().any(|q| q.key == p.key)
+    {
+        c.problems.push(p);
     }
     c.problems
 }

@@ -9,9 +9,9 @@ mod grid;
 mod table;
 mod value;
 
-pub use analytic::{constant, power_law};
+pub use analytic::{constant, lines, power_law};
 pub use builtin::{builtin_names, builtin_table, resolve};
 pub use error::SpectrumError;
-pub use grid::SpectralGrid;
+pub use grid::{Bin, GridError, LINE_WIDTH, MIN_LINE_SEPARATION, SpectralGrid};
 pub use table::{Extrapolation, PiecewiseLinear, SpectralTable};
 pub use value::{MAX_BINS, Spectrum};

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use super::{MAX_BINS, SpectralGrid, Spectrum, SpectrumError};
+use super::{Bin, MAX_BINS, SpectralGrid, Spectrum, SpectrumError};
 
 /// What a piecewise-linear spectrum is worth outside its tabulated range.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -97,27 +97,26 @@ impl PiecewiseLinear {
         total
     }
 
-    /// Exact integral over each bin of `grid`, in bin order.
+    /// Exact integral over each bin of `grid`, in bin order; a line bin's is the value at
+    /// its line times its width (see [`Bin::Line`]).
     pub fn bin_integrals(&self, grid: &SpectralGrid, ext: Extrapolation) -> Vec<f64> {
         (0..grid.n)
-            .map(|i| {
-                let (a, b) = grid.edges(i);
-                self.integral(a, b, ext)
+            .map(|i| match grid.bin(i) {
+                Bin::Band { lo, hi } => self.integral(lo, hi, ext),
+                Bin::Line { lambda, lo, hi } => self.eval(lambda, ext) * (hi - lo),
             })
             .collect()
     }
 
-    /// Exact average over each bin: the value light transport carries.
+    /// The value light transport carries in each bin: the exact average over a band, the
+    /// value at the line in a line bin.
     pub fn bin_averages(&self, grid: &SpectralGrid, ext: Extrapolation) -> Spectrum {
-        let w = grid.width();
         let mut s = Spectrum::ZERO;
-        for (i, v) in self
-            .bin_integrals(grid, ext)
-            .into_iter()
-            .enumerate()
-            .take(MAX_BINS)
-        {
-            s.0[i] = (v / w) as f32;
+        for i in 0..grid.n.min(MAX_BINS) {
+            s.0[i] = match grid.bin(i) {
+                Bin::Band { lo, hi } => self.integral(lo, hi, ext) / grid.bin_width(i),
+                Bin::Line { lambda, .. } => self.eval(lambda, ext),
+            } as f32;
         }
         s
     }

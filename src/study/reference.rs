@@ -3,17 +3,20 @@
 //!
 //! `BRUMEREF` (8 bytes), then little-endian u32 version (1), u32 width, u32 height, u32 bins,
 //! f64 lambda_min, f64 lambda_max, u64 passes, f64 seconds, then four f32 arrays of
-//! width * height * bins values in the film's layout: total, medium, surface, noise.
+//! width * height * bins values in the film's layout: total, medium, surface, noise. Version 2
+//! (written only for a spectral grid with lines) puts u32 equal bins, u32 line count and the
+//! lines (f64 each) before the arrays.
 
 use std::io::{Read, Write};
 use std::path::Path;
 
 use super::{StudyError, io_err};
 use crate::film::SpectralImage;
-use crate::spectrum::SpectralGrid;
+use crate::spectrum::{MAX_BINS, SpectralGrid};
 
 pub const REFERENCE_MAGIC: &[u8; 8] = b"BRUMEREF";
 const VERSION: u32 = 1;
+const VERSION_LINES: u32 = 2;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reference {
@@ -42,7 +45,7 @@ impl Reference {
         Self {
             width: img.width,
             height: img.height,
-            grid: img.grid,
+            grid: img.grid.clone(),
             passes,
             seconds,
             total: img.data.clone(),
@@ -69,8 +72,13 @@ impl Reference {
     pub fn save(&self, path: &Path) -> Result<(), StudyError> {
         let mut b = Vec::with_capacity(56 + 16 * self.total.len());
         b.extend_from_slice(REFERENCE_MAGIC);
+        let lines = self.grid.lines();
         for v in [
-            VERSION,
+            if lines.is_empty() {
+                VERSION
+            } else {
+                VERSION_LINES
+            },
             self.width as u32,
             self.height as u32,
             self.grid.n as u32,
@@ -81,6 +89,13 @@ impl Reference {
         b.extend_from_slice(&self.grid.lambda_max.to_le_bytes());
         b.extend_from_slice(&self.passes.to_le_bytes());
         b.extend_from_slice(&self.seconds.to_le_bytes());
+        if !lines.is_empty() {
+            b.extend_from_slice(&(self.grid.uniform_bins() as u32).to_le_bytes());
+            b.extend_from_slice(&(lines.len() as u32).to_le_bytes());
+            lines
+                .iter()
+                .for_each(|l| b.extend_from_slice(&l.to_le_bytes()));
+        }
         for arr in [&self.total, &self.medium, &self.surface, &self.noise] {
             for v in arr.iter() {
                 b.extend_from_slice(&v.to_le_bytes());
@@ -107,7 +122,8 @@ impl Reference {
         }
         let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap_or([0; 4]));
         let u64_at = |o: usize| u64::from_le_bytes(bytes[o..o + 8].try_into().unwrap_or([0; 8]));
-        if u32_at(8) != VERSION {
+        let version = u32_at(8);
+        if version != VERSION && version != VERSION_LINES {
             return Err(bad("unknown version"));
         }
         let (width, height, n) = (
@@ -118,22 +134,42 @@ impl Reference {
         if n == 0 || n > crate::spectrum::MAX_BINS || width == 0 || height == 0 {
             return Err(bad("bad image size"));
         }
-        let grid = SpectralGrid {
-            n,
-            lambda_min: f64::from_bits(u64_at(24)),
-            lambda_max: f64::from_bits(u64_at(32)),
+        let (lambda_min, lambda_max) = (f64::from_bits(u64_at(24)), f64::from_bits(u64_at(32)));
+        if !(lambda_min.is_finite() && lambda_max.is_finite() && lambda_max > lambda_min) {
+            return Err(bad("bad spectral range"));
+        }
+        // Version 2: the equal bins and the lines, which make the grid's `n` bins.
+        let (uniform, nlines) = match version {
+            VERSION_LINES if bytes.len() >= 64 => (u32_at(56) as usize, u32_at(60) as usize),
+            VERSION_LINES => return Err(bad("truncated header")),
+            _ => (n, 0),
         };
+        let start = if version == VERSION {
+            56
+        } else {
+            64 + 8 * nlines.min(MAX_BINS)
+        };
+        if nlines > MAX_BINS || bytes.len() < start || !(1..=MAX_BINS).contains(&uniform) {
+            return Err(bad("bad spectral grid"));
+        }
+        let lines: Vec<f64> = (0..nlines)
+            .map(|k| f64::from_bits(u64_at(64 + 8 * k)))
+            .collect();
+        let grid = SpectralGrid::with_lines(uniform, lambda_min, lambda_max, &lines)
+            .ok()
+            .filter(|g| g.n == n)
+            .ok_or_else(|| bad("bad spectral grid"))?;
         let passes = u64_at(40);
         let seconds = f64::from_bits(u64_at(48));
         let count = width
             .checked_mul(height)
             .and_then(|p| p.checked_mul(n))
             .ok_or_else(|| bad("bad image size"))?;
-        if bytes.len() != 56 + 16 * count {
+        if bytes.len() != start + 16 * count {
             return Err(bad("truncated or oversized data"));
         }
         let arr = |k: usize| -> Vec<f32> {
-            let start = 56 + 4 * count * k;
+            let start = start + 4 * count * k;
             bytes[start..start + 4 * count]
                 .chunks_exact(4)
                 .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import colour
-from conftest import brume_json
+from conftest import brume_json, run_brume
 from reference import checker_errors, reference_xyz, patches
 
 # brume's default bin count (SpectralGrid::default, `brume spectrum --bins`): chosen as the
@@ -90,3 +90,60 @@ def test_rec709_to_acescg_matches_ocio(brume):
 def test_default_bin_count_is_the_chosen_one(brume):
     d = brume_json("spectrum", "colorchecker:1", "--illuminant", "D65")
     assert d["bins"] == DEFAULT_BINS and (d["lambda_min"], d["lambda_max"]) == (380, 780)
+
+
+# Spectral lines (issue 17): a line gets a narrow bin of its own, so its colour is the colour of
+# its wavelength. Acceptance: within 0.002 in xy of colour-science.
+LINE_SCENE = """
+[film]
+colour_space = "xyz"
+spectral_layers = true
+[camera]
+type = "orthographic"
+width = 8
+height = 8
+position = [0, 0, 2]
+look_at = [0, 0, 0]
+view_width = 0.5
+view_height = 0.5
+[integrator]
+passes = 1
+[[shapes]]
+type = "quad"
+size = [1, 1]
+emit = { line = LAMBDA }
+"""
+
+
+def _line_xy(wavelength):
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    return colour.XYZ_to_xy(colour.wavelength_to_XYZ(wavelength, cmfs))
+
+
+@pytest.mark.parametrize("wavelength", [450.0, 532.0, 589.3, 632.8])
+def test_line_spectrum_chromaticity_matches_colour_science(brume, wavelength):
+    d = brume_json("spectrum", "--line", wavelength)
+    want = _line_xy(wavelength)
+    assert np.hypot(*(np.asarray(d["xy"]) - want)) < 0.002, (d["xy"], want)
+    assert d["lines"] == [wavelength] and d["bins"] > DEFAULT_BINS
+
+
+def test_rendered_532_nm_line_has_its_chromaticity(brume, tmp_path):
+    # An emitting quad seen directly, rendered to a CIE XYZ EXR through the whole pipeline.
+    import OpenEXR
+
+    scene = tmp_path / "line.toml"
+    scene.write_text(LINE_SCENE.replace("LAMBDA", "532.0"))
+    out = tmp_path / "line.exr"
+    run_brume("render", scene, "-o", out, "--quiet")
+    f = OpenEXR.File(str(out))
+    header, ch = f.header(), {k: v.pixels for k, v in f.channels().items()}
+    xyz = np.asarray(ch["RGB"], dtype=np.float64).reshape(-1, 3).mean(axis=0)
+    got = colour.XYZ_to_xy(xyz)
+    want = _line_xy(532.0)
+    assert np.hypot(*(got - want)) < 0.002, (got, want)
+    # The line's channel is named at the line; the bin edges let a reader integrate it.
+    assert "S0.532,000000nm" in ch
+    edges = [float(e) for e in str(header["brumeBinEdges"]).split()]
+    lo, hi = max(e for e in edges if e < 532.0), min(e for e in edges if e > 532.0)
+    assert len(edges) == DEFAULT_BINS + 3 and abs(hi - lo - 0.1) < 1e-9, edges

@@ -43,7 +43,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let resumed_ref = resumed.as_ref().map(|r| (resume_path, r));
     let plan = plan::plan(args, loaded.desc.integrator.passes, resumed_ref, &cmd)?;
     let outputs = targets::outputs(args, &loaded, plan.range)?;
-    check_memory(&loaded.desc, args.force)?;
+    check_memory(&loaded, args.force)?;
     let pool = super::thread_pool(args.threads)?;
 
     let start = Instant::now();
@@ -242,17 +242,20 @@ fn report(
 }
 
 /// Refuses a render whose memory estimate exceeds the machine's memory, unless forced.
-fn check_memory(desc: &brume::scene::desc::SceneDesc, force: bool) -> anyhow::Result<()> {
+fn check_memory(loaded: &brume::scene::LoadedScene, force: bool) -> anyhow::Result<()> {
     let Some(ram) = film_files::machine_memory() else {
         return Ok(());
     };
+    let desc = &loaded.desc;
+    // Every bin the film holds, a narrow one per spectral line included.
+    let bins = loaded.grid()?.n;
     let est = MemoryEstimate::new(
         &desc.integrator,
         desc.camera.width as u64 * desc.camera.height as u64,
-        desc.film.bins,
+        bins,
         !desc.media.is_empty(),
     );
-    let values = desc.camera.width as f64 * desc.camera.height as f64 * desc.film.bins as f64;
+    let values = desc.camera.width as f64 * desc.camera.height as f64 * bins as f64;
     // Film: three i128 sums; pass buffer: two f32 layers; final image: data, noise, layers.
     let film = values * (3.0 * 16.0 + 2.0 * 4.0 + 4.0 * 4.0);
     let gather = est.gather_bytes.min(desc.integrator.gather_budget() as f64);

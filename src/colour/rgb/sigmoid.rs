@@ -1,6 +1,6 @@
 //! The sigmoid-polynomial spectrum of Jakob and Hanika (2019).
 
-use crate::spectrum::{MAX_BINS, SpectralGrid, Spectrum};
+use crate::spectrum::{Bin, MAX_BINS, SpectralGrid, Spectrum};
 
 /// Wavelength range the polynomial's variable is normalised over (the CMFs' range).
 pub const LAMBDA_LO: f64 = 360.0;
@@ -52,11 +52,18 @@ impl SigmoidPolynomial {
         self.eval_t(normalised(lambda))
     }
 
-    /// Bin averages (midpoint rule with a few sub-samples: the curve is smooth at bin scale).
+    /// Band averages (midpoint rule with a few sub-samples: the curve is smooth at bin scale)
+    /// and, in a line bin, the value at the line.
     pub fn bin_averages(&self, grid: &SpectralGrid) -> Spectrum {
         let mut s = Spectrum::ZERO;
         for i in 0..grid.n.min(MAX_BINS) {
-            let (a, b) = grid.edges(i);
+            let (a, b) = match grid.bin(i) {
+                Bin::Band { lo, hi } => (lo, hi),
+                Bin::Line { lambda, .. } => {
+                    s.0[i] = self.eval(lambda) as f32;
+                    continue;
+                }
+            };
             let h = (b - a) / SUBSAMPLES as f64;
             let sum: f64 = (0..SUBSAMPLES)
                 .map(|k| self.eval(a + (k as f64 + 0.5) * h))

@@ -48,7 +48,15 @@ fn rgb_channels(
     }
 }
 
-/// One channel per bin, named `<prefix>S0.<centre>nm`.
+/// The `n + 1` bin edges in nm, space-separated.
+fn bin_edges(img: &SpectralImage) -> String {
+    let g = &img.grid;
+    let mut edges: Vec<String> = (0..g.n).map(|i| g.edges(i).0.to_string()).collect();
+    edges.push(g.edges(g.n - 1).1.to_string());
+    edges.join(" ")
+}
+
+/// One channel per bin, named `<prefix>S0.<centre>nm` (a line bin: at its line).
 fn spectral_channels(
     out: &mut Vec<AnyChannel<FlatSamples>>,
     prefix: &str,
@@ -134,6 +142,9 @@ pub(super) fn write(
         // The layout's unit for emissive data; channel values are spectral radiance, i.e. per
         // nanometre (bin averages), as in pbrt-v4's spectral film.
         text("emissiveUnits", "W.m^-2.sr^-1");
+        // Bins differ in width once spectral lines split them (a line's channel is named at
+        // the line and holds its power over its narrow bin): the edges let a reader integrate.
+        text("brumeBinEdges", &bin_edges(img));
     }
     image.write().to_file(path).map_err(|e| e.to_string())
 }

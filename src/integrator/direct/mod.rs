@@ -64,7 +64,7 @@ impl Direct {
             .iter()
             .zip(&nee)
             .map(|(l, &on)| {
-                let p = l.power(&scene.geometry).sum() as f64;
+                let p = scene.grid.weighted_sum(&l.power(&scene.geometry));
                 if on && p.is_finite() && p > 0.0 {
                     p
                 } else {

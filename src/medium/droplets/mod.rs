@@ -27,8 +27,9 @@ pub const MOR_CONTRAST: f64 = 0.05;
 pub const VISIBILITY_NM: f64 = 550.0;
 /// Density of liquid water (g/m³), for liquid water content.
 const WATER_DENSITY: f64 = 1.0e6;
-/// At most this many wavelengths are solved; bins between them are interpolated linearly
-/// (distribution-averaged optics are smooth in wavelength: the ripple is averaged out).
+/// At most this many evenly spaced wavelengths are solved (plus the grid's lines); bins between
+/// them are interpolated linearly (distribution-averaged optics are smooth in wavelength: the
+/// ripple is averaged out).
 pub const MAX_SAMPLES: usize = 8;
 
 /// The size distribution's shape (`distribution` key).
@@ -237,8 +238,8 @@ pub fn phase_angles() -> Vec<f64> {
     a
 }
 
-/// A solved fog: its description, grid (bins and range bits) and index file.
-type Solved = (DropletsDesc, (usize, u64, u64), PathBuf, DropletOptics);
+/// A solved fog: its description, grid and index file.
+type Solved = (DropletsDesc, SpectralGrid, PathBuf, DropletOptics);
 
 /// Recent solutions, so that a scene built twice in one process (`brume info` describes the
 /// media, then builds the scene; a study loads its scene once per variant) solves its fog
@@ -254,12 +255,11 @@ pub fn optics(
     resolve: &dyn Fn(&str) -> PathBuf,
 ) -> Result<DropletOptics, MediumError> {
     let file = resolve(&desc.refractive_index);
-    let key = (grid.n, grid.lambda_min.to_bits(), grid.lambda_max.to_bits());
     {
         let solved = SOLVED.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(s) = solved
             .iter()
-            .find(|s| s.0 == *desc && s.1 == key && s.2 == file)
+            .find(|s| s.0 == *desc && s.1 == *grid && s.2 == file)
         {
             return Ok(s.3.clone());
         }
@@ -269,7 +269,7 @@ pub fn optics(
     if solved.len() >= KEEP {
         solved.remove(0);
     }
-    solved.push((desc.clone(), key, file, o.clone()));
+    solved.push((desc.clone(), grid.clone(), file, o.clone()));
     Ok(o)
 }
 
@@ -330,16 +330,21 @@ fn solve(
     Ok(o)
 }
 
-/// The wavelengths to solve: every bin centre if there are at most `MAX_SAMPLES` bins, else
-/// `MAX_SAMPLES` wavelengths evenly from the first to the last bin centre.
+/// The wavelengths to solve: every bin centre (a line bin's is its line) if there are at most
+/// `MAX_SAMPLES` bins, else `MAX_SAMPLES` wavelengths evenly from the first to the last bin
+/// centre plus every line, so that a line's bin holds the droplets' optics at the line itself.
 fn sample_wavelengths(grid: &SpectralGrid) -> Vec<f64> {
     if grid.n <= MAX_SAMPLES {
         return grid.centres();
     }
     let (a, z) = (grid.centre(0), grid.centre(grid.n - 1));
-    (0..MAX_SAMPLES)
+    let mut s: Vec<f64> = (0..MAX_SAMPLES)
         .map(|i| a + (z - a) * i as f64 / (MAX_SAMPLES - 1) as f64)
-        .collect()
+        .chain(grid.lines().iter().copied())
+        .collect();
+    s.sort_by(f64::total_cmp);
+    s.dedup();
+    s
 }
 
 /// The sample interval holding `lambda` and the position in it.

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::tabulated::PhaseTable;
 use crate::medium::MediumError;
-use crate::spectrum::{Extrapolation, PiecewiseLinear, SpectralGrid};
+use crate::spectrum::{Bin, Extrapolation, PiecewiseLinear, SpectralGrid};
 
 /// The parsed file: angles (degrees, strictly increasing from 0 to 180) and value columns.
 #[derive(Clone, Debug, PartialEq)]
@@ -148,8 +148,8 @@ impl PhaseCsv {
     }
 
     /// The table for `grid`: one lane if the file has one value column, else one lane per bin,
-    /// each the exact bin average of the columns interpolated linearly in wavelength (held
-    /// constant beyond the first and last column). Every column is a normalised phase after
+    /// each the exact band average (a line bin: the value at its line) of the columns
+    /// interpolated linearly in wavelength (held constant beyond the first and last column). Every column is a normalised phase after
     /// normalisation, so each bin's lane is a convex combination of them.
     pub fn table(&self, grid: &SpectralGrid, file: &Path) -> Result<PhaseTable, MediumError> {
         // Rows run from 0° to 180°, i.e. mu from 1 down to -1: reverse them.
@@ -199,8 +199,8 @@ fn normalise(mu: &[f64], v: &[f64]) -> Option<Vec<f64>> {
     (total > 0.0).then(|| v.iter().map(|x| x / total).collect())
 }
 
-/// Per bin, the bin average of the hat function of each column (the weight of that column in
-/// the bin's lane), applied to the columns.
+/// Per bin, the band average of the hat function of each column (or its value at a line bin's
+/// line): the weight of that column in the bin's lane, applied to the columns.
 fn bin_lanes(waves: &[f64], cols: &[Vec<f64>], grid: &SpectralGrid) -> Vec<Vec<f64>> {
     let weights: Vec<Vec<f64>> = (0..waves.len())
         .map(|c| {
@@ -209,9 +209,9 @@ fn bin_lanes(waves: &[f64], cols: &[Vec<f64>], grid: &SpectralGrid) -> Vec<Vec<f
                 .collect();
             let pl = PiecewiseLinear::new(waves.to_vec(), hat);
             (0..grid.n)
-                .map(|b| {
-                    let (a, z) = grid.edges(b);
-                    pl.integral(a, z, Extrapolation::Clamp) / (z - a)
+                .map(|b| match grid.bin(b) {
+                    Bin::Band { lo, hi } => pl.integral(lo, hi, Extrapolation::Clamp) / (hi - lo),
+                    Bin::Line { lambda, .. } => pl.eval(lambda, Extrapolation::Clamp),
                 })
                 .collect()
         })

@@ -5,7 +5,8 @@ use crate::colour::{Cat, ColourSpace, Observer, ViewTransform};
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FilmDesc {
-    /// Number of spectral bins carried by light transport.
+    /// Number of equal spectral bins over the range; each spectral line an emission uses adds
+    /// a narrow bin of its own (see `LoadedScene::grid`).
     pub bins: usize,
     /// Spectral range in nanometres.
     pub lambda_min: f64,
@@ -58,9 +59,5 @@ impl FilmDesc {
             noise_layer: self.noise_layer,
             cat: self.adaptation,
         }
-    }
-
-    pub fn grid(&self) -> crate::spectrum::SpectralGrid {
-        crate::spectrum::SpectralGrid::new(self.bins, self.lambda_min, self.lambda_max)
     }
 }

@@ -34,7 +34,8 @@ pub const MAX_IRRADIANCE: f32 = 1e6;
 #[serde(deny_unknown_fields)]
 pub struct LightCommon {
     /// Relative spectral shape, scaled so that its integral over the film's range is the
-    /// light's power (or irradiance). Default: the D65 illuminant.
+    /// light's power (or irradiance); spectral lines (`{ line = 532.0 }`) put it all at their
+    /// wavelengths. Default: the D65 illuminant.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spectrum: Option<SpectrumRef>,
     /// How its direct light reaches the image under `integrator.direct = "nee"`.
@@ -62,7 +63,7 @@ pub type LightDesc = Tagged<LightCommon, LightKind>;
 impl LightDesc {
     pub fn check(&self, c: &mut Checker, key: &str) {
         if let Some(s) = &self.common.spectrum {
-            c.spectrum_ref(&format!("{key}.spectrum"), s);
+            c.emission_ref(&format!("{key}.spectrum"), s);
         }
         match &self.kind {
             LightKind::Directional(l) => l.check(c, key),
@@ -88,7 +89,7 @@ impl LightDesc {
             None => b.spectra.emission(&SpectrumRef::Named("D65".into()), key)?,
         };
         // Normalise the shape so that its integral over the spectral range is 1 (per nm).
-        let integral = shape.sum() as f64 * b.grid.width();
+        let integral = b.grid.integral(&shape);
         if integral <= 0.0 {
             let message = "the spectrum is zero over the film's range";
             return Err(b.source.invalid(&spectrum_key, message));

@@ -126,7 +126,7 @@ impl ShapeDesc {
             }
         }
         if let Some(e) = &s.emit {
-            c.spectrum_ref(&format!("{key}.emit"), e);
+            c.emission_ref(&format!("{key}.emit"), e);
         } else if s.direct != DirectChoice::Auto {
             c.fail(
                 format!("{key}.direct"),
