@@ -340,3 +340,9 @@ fn light_set_shares_rays_in_proportion_to_power() {
     }
     assert!(LightSet::new(vec![], &geo).sample(&geo, [0.5; 5]).is_none());
 }
+
+#[path = "light_emission/photometric.rs"]
+mod photometric;
+
+#[path = "light_emission/ies.rs"]
+mod ies_profiles;

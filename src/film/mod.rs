@@ -5,6 +5,8 @@ mod accum;
 pub mod atomic;
 pub mod checkpoint;
 mod chunk;
+#[cfg(test)]
+mod extras_tests;
 mod identity;
 mod image;
 pub mod output;

@@ -136,7 +136,7 @@ pub fn render(
         for x in x0 + BAR_W..x0 + BAR_W + 4 {
             put(x, y, INK);
         }
-        text(&mut put, x0 + BAR_W + 6, y.saturating_sub(4), &label(v));
+        text(&mut put, x0 + BAR_W + 8, y.saturating_sub(4), &label(v));
     }
     text(&mut put, x0, 4, "cd/m2");
     Ok((w, h, buf))
