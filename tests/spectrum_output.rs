@@ -89,3 +89,6 @@ fn bad_extension_and_bad_sizes_are_errors() {
     assert!(e.to_string().contains("expected 48"), "{e}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+#[path = "spectrum_output/photometric.rs"]
+mod photometric;

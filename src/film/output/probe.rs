@@ -96,7 +96,14 @@ pub fn read(path: &Path) -> std::result::Result<ProbeImage, ProbeError> {
                     .collect()
             }),
     };
-    let units = match img.attributes.other.get(&Text::from(UNITS_ATTRIBUTE)) {
+    // Custom attributes come back in the layer's or the image's table, by the reader's choice.
+    let key = Text::from(UNITS_ATTRIBUTE);
+    let attribute = layer
+        .attributes
+        .other
+        .get(&key)
+        .or_else(|| img.attributes.other.get(&key));
+    let units = match attribute {
         Some(AttributeValue::Text(t)) if t == &Text::from("photometric") => {
             Some(Units::Photometric)
         }
