@@ -149,6 +149,17 @@ pub fn report_extras(film: &Film, quiet: bool) {
     if !readings.is_empty() && !quiet {
         print!("{}", output::sensors::table(&readings));
     }
+    for r in readings
+        .iter()
+        .filter(|r| r.spectrum.iter().all(|v| *v == 0.0))
+    {
+        eprintln!(
+            "brume: warning: sensor {} read exactly 0 in every pass: no light reached it, or \
+             this build does not estimate {} sensors",
+            r.name,
+            r.kind.name()
+        );
+    }
     if let Some(f) = film.unattributed()
         && f.abs() > 1e-4
     {

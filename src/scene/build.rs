@@ -119,11 +119,12 @@ fn build_lights(
 /// The sensors, and the light layers' names (`light<index>.<kind>`, in the order of the
 /// scene's lights: emitting shapes first) when `film.light_layers` is on.
 pub fn film_extras(d: &SceneDesc) -> FilmExtras {
+    let size = (d.camera.width, d.camera.height);
     let sensors = d
         .sensors
         .iter()
         .enumerate()
-        .map(|(i, s)| s.build(i))
+        .map(|(i, s)| s.build(i, size))
         .collect();
     let mut light_layers = Vec::new();
     if d.film.light_layers {

@@ -5,7 +5,7 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use super::array::exact;
+use super::array::{exact, exact_opt};
 use super::check::Checker;
 use super::tagged::{Tagged, kinds};
 use crate::film::{Sensor, SensorKind};
@@ -19,13 +19,45 @@ pub struct SensorCommon {
     pub name: Option<String>,
 }
 
-/// `type = "luminance"`: the mean luminance over a region of pixels.
+/// `type = "luminance"`: the mean luminance over a region of pixels, given in pixels or as
+/// fractions of the image (which follow a change of resolution).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LuminanceSensorDesc {
     /// `[x0, y0, x1, y1]`: pixels x0 <= x < x1, y0 <= y < y1 (row 0 at the top).
-    #[serde(deserialize_with = "exact")]
-    pub region: [u32; 4],
+    #[serde(
+        default,
+        deserialize_with = "exact_opt",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub region: Option<[u32; 4]>,
+    /// `[x0, y0, x1, y1]` as fractions of the width and height, in [0, 1]: the pixels the
+    /// rectangle touches (at least one).
+    #[serde(
+        default,
+        deserialize_with = "exact_opt",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub window: Option<[f32; 4]>,
+}
+
+impl LuminanceSensorDesc {
+    /// The pixel region on an image of `(width, height)`.
+    pub fn pixels(&self, (width, height): (u32, u32)) -> [u32; 4] {
+        match (self.region, self.window) {
+            (Some(r), _) => r,
+            (None, Some([x0, y0, x1, y1])) => {
+                let lo =
+                    |f: f32, n: u32| ((f.clamp(0.0, 1.0) * n as f32).floor() as u32).min(n - 1);
+                let hi = |f: f32, n: u32, lo: u32| {
+                    ((f.clamp(0.0, 1.0) * n as f32).ceil() as u32).clamp(lo + 1, n)
+                };
+                let (a, b) = (lo(x0, width.max(1)), lo(y0, height.max(1)));
+                [a, b, hi(x1, width.max(1), a), hi(y1, height.max(1), b)]
+            }
+            (None, None) => [0, 0, 0, 0],
+        }
+    }
 }
 
 /// `type = "illuminance"`: the illuminance at a point on a surface of a given normal (direct
@@ -75,19 +107,7 @@ impl SensorDesc {
             }
         }
         match &self.kind {
-            SensorKindDesc::Luminance(s) => {
-                let [x0, y0, x1, y1] = s.region;
-                if !(x0 < x1 && y0 < y1 && x1 <= width && y1 <= height) {
-                    c.fail(
-                        format!("{key}.region"),
-                        format!(
-                            "[x0, y0, x1, y1] must hold x0 < x1 <= {width} and y0 < y1 <= \
-                             {height} (the image's size), got {:?}",
-                            s.region
-                        ),
-                    );
-                }
-            }
+            SensorKindDesc::Luminance(s) => check_luminance(c, key, s, (width, height)),
             SensorKindDesc::Illuminance(s) => {
                 c.vector(&format!("{key}.position"), s.position);
                 c.direction(&format!("{key}.normal"), s.normal);
@@ -95,10 +115,12 @@ impl SensorDesc {
         }
     }
 
-    /// The runtime sensor (index `index` in the scene's list).
-    pub fn build(&self, index: usize) -> Sensor {
+    /// The runtime sensor (index `index` in the scene's list) on an image of `size`.
+    pub fn build(&self, index: usize, size: (u32, u32)) -> Sensor {
         let kind = match &self.kind {
-            SensorKindDesc::Luminance(s) => SensorKind::Luminance { region: s.region },
+            SensorKindDesc::Luminance(s) => SensorKind::Luminance {
+                region: s.pixels(size),
+            },
             SensorKindDesc::Illuminance(s) => SensorKind::Illuminance {
                 position: s.position,
                 normal: Vec3::from(s.normal).normalize_or(Vec3::Y).to_array(),
@@ -108,6 +130,46 @@ impl SensorDesc {
             name: self.name(index),
             kind,
         }
+    }
+}
+
+/// A luminance sensor's region: exactly one of `region` (within the image) and `window` (in
+/// [0, 1], low < high).
+fn check_luminance(c: &mut Checker, key: &str, s: &LuminanceSensorDesc, (w, h): (u32, u32)) {
+    match (s.region, s.window) {
+        (Some([x0, y0, x1, y1]), None) => {
+            if !(x0 < x1 && y0 < y1 && x1 <= w && y1 <= h) {
+                c.fail(
+                    format!("{key}.region"),
+                    format!(
+                        "[x0, y0, x1, y1] must hold x0 < x1 <= {w} and y0 < y1 <= {h} (the \
+                         image's size), got {:?}; `window` gives fractions of the image instead",
+                        [x0, y0, x1, y1]
+                    ),
+                );
+            }
+        }
+        (None, Some([x0, y0, x1, y1])) => {
+            let unit = |v: f32| (0.0..=1.0).contains(&v);
+            if !([x0, y0, x1, y1].into_iter().all(unit) && x0 < x1 && y0 < y1) {
+                c.fail(
+                    format!("{key}.window"),
+                    format!(
+                        "[x0, y0, x1, y1] must be fractions of the image in [0, 1] with x0 < x1 \
+                         and y0 < y1, got {:?}",
+                        [x0, y0, x1, y1]
+                    ),
+                );
+            }
+        }
+        (Some(_), Some(_)) => c.fail(
+            format!("{key}.window"),
+            "give `region` or `window`, not both",
+        ),
+        (None, None) => c.fail(
+            key,
+            "a luminance sensor needs `region` (pixels) or `window` (fractions)",
+        ),
     }
 }
 
