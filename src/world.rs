@@ -5,6 +5,7 @@
 use glam::Vec3;
 
 use crate::camera::Camera;
+use crate::film::FilmExtras;
 use crate::geometry::{Geometry, Ray};
 use crate::light::LightSet;
 use crate::material::Material;
@@ -30,6 +31,10 @@ pub struct Scene {
     /// The world box: paths that leave it end (media are taken to stop there).
     pub world_min: Vec3,
     pub world_max: Vec3,
+    /// What the film keeps beside the image: the scene's sensors (`[[sensors]]`, in file
+    /// order; the integrator splats illuminance sensors by their index here) and, with
+    /// `film.light_layers`, one layer name per light (in `lights` order).
+    pub film_extras: FilmExtras,
 }
 
 impl Scene {

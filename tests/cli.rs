@@ -197,3 +197,6 @@ fn help_documents_every_flag() {
 
 #[path = "cli/docs_examples.rs"]
 mod docs_examples;
+
+#[path = "cli/photometry.rs"]
+mod photometry;

@@ -345,3 +345,9 @@ fn light_set_shares_rays_in_proportion_to_power() {
             .is_none()
     );
 }
+
+#[path = "light_emission/photometric.rs"]
+mod photometric;
+
+#[path = "light_emission/ies.rs"]
+mod ies_profiles;

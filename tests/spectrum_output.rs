@@ -203,3 +203,6 @@ emit = { lines = [[532.0, 2.0]] }
     }
     assert_xy_532("seen directly", film_xy(&img, &mean));
 }
+
+#[path = "spectrum_output/photometric.rs"]
+mod photometric;

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 
 use brume::film::output::{self, OutputOptions};
-use brume::film::{Film, FilmId, Sampling, checkpoint};
+use brume::film::{Film, FilmId, Sampling, SpectralImage, checkpoint};
 use brume::scene::LoadedScene;
 use brume::scene::desc::FilmDesc;
 
@@ -41,16 +41,86 @@ pub fn machine_memory() -> Option<u64> {
 
 /// The output settings recorded in a film's identity (the scene's `[film]` table).
 pub fn output_options(id: &FilmId) -> anyhow::Result<OutputOptions> {
-    let film = id.section("film").cloned().unwrap_or_default();
-    let film: FilmDesc =
-        serde_json::from_value(film).context("the film file's output settings are unreadable")?;
-    Ok(film.output_options())
+    Ok(film_desc(id)?.output_options())
 }
 
-/// Writes every output of `film` (images by extension, film files) and returns the failures:
-/// one unwritable output does not cost the others.
+/// The `[film]` table recorded in a film's identity.
+pub fn film_desc(id: &FilmId) -> anyhow::Result<FilmDesc> {
+    let film = id.section("film").cloned().unwrap_or_default();
+    serde_json::from_value(film).context("the film file's output settings are unreadable")
+}
+
+/// Files written beside the image outputs: a false-colour map `NAME-luminance.png` per image
+/// name (with `film.false_colour`), and the sensors' `NAME.sensors.csv` and `.json` beside the
+/// first image (when the scene has sensors). Film files (parts, checkpoints) get none.
+pub fn derived(outputs: &[PathBuf], film: &FilmDesc, sensors: bool) -> Derived {
+    let images: Vec<&PathBuf> = outputs.iter().filter(|p| !is_film_path(p)).collect();
+    let mut false_colour: Vec<PathBuf> = Vec::new();
+    if film.false_colour {
+        for p in &images {
+            let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+            let map = p.with_file_name(format!("{}-luminance.png", stem.unwrap_or_default()));
+            if !false_colour.contains(&map) && !outputs.contains(&map) {
+                false_colour.push(map);
+            }
+        }
+    }
+    let sensors = match (sensors, images.first()) {
+        (true, Some(first)) => Some(output::sensors::paths(first)),
+        _ => None,
+    };
+    Derived {
+        false_colour,
+        sensors,
+        range: film.false_colour_range,
+    }
+}
+
+/// What [`derived`] decided.
+pub struct Derived {
+    pub false_colour: Vec<PathBuf>,
+    pub sensors: Option<[PathBuf; 2]>,
+    range: Option<[f32; 2]>,
+}
+
+impl Derived {
+    /// Every path, to check before rendering.
+    pub fn paths(&self) -> Vec<PathBuf> {
+        let mut all = self.false_colour.clone();
+        all.extend(self.sensors.iter().flatten().cloned());
+        all
+    }
+
+    /// Writes the derived files of `film` (its image made once, in `image`): the paths
+    /// written and the failures.
+    pub fn write(
+        &self,
+        film: &Film,
+        image: &mut Option<SpectralImage>,
+    ) -> (Vec<PathBuf>, Vec<anyhow::Error>) {
+        let (mut written, mut failed) = (Vec::new(), Vec::new());
+        for path in &self.false_colour {
+            let img = image.get_or_insert_with(|| film.image());
+            match output::false_colour::write(path, img, self.range) {
+                Ok(()) => written.push(path.clone()),
+                Err(e) => failed.push(e.into()),
+            }
+        }
+        if let Some(paths) = &self.sensors {
+            match output::sensors::write(paths, &film.sensor_readings()) {
+                Ok(()) => written.extend(paths.iter().cloned()),
+                Err(e) => failed.push(e.into()),
+            }
+        }
+        (written, failed)
+    }
+}
+
+/// Writes every output of `film` (images by extension, film files, then the derived files)
+/// and returns the failures: one unwritable output does not cost the others.
 pub fn write_outputs(
     outputs: &[PathBuf],
+    derived: &Derived,
     film: &Film,
     id: &FilmId,
     opts: &OutputOptions,
@@ -68,7 +138,37 @@ pub fn write_outputs(
             failed.push(e);
         }
     }
+    failed.extend(derived.write(film, &mut image).1);
     failed
+}
+
+/// What a finished film tells beside its images: the sensors' table (stdout), and a warning
+/// when light layers miss part of the image.
+pub fn report_extras(film: &Film, quiet: bool) {
+    let readings = film.sensor_readings();
+    if !readings.is_empty() && !quiet {
+        print!("{}", output::sensors::table(&readings));
+    }
+    for r in readings
+        .iter()
+        .filter(|r| r.spectrum.iter().all(|v| *v == 0.0))
+    {
+        eprintln!(
+            "brume: warning: sensor {} read exactly 0 in every pass: no light reached it, or \
+             this build does not estimate {} sensors",
+            r.name,
+            r.kind.name()
+        );
+    }
+    if let Some(f) = film.unattributed()
+        && f.abs() > 1e-4
+    {
+        eprintln!(
+            "brume: warning: the light layers hold {:.2} % of the image's light, not all of it: \
+             some light was added without the index of the light it came from",
+            100.0 * (1.0 - f)
+        );
+    }
 }
 
 /// Refuses a film of another render than `reference`, naming the files and what differs.

@@ -32,7 +32,12 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     // overlaps easy to report.
     parts.sort_by_key(|(_, h)| h.first);
     check_parts(&parts)?;
-    outputs::prepare(&args.outputs)?;
+    let film_desc = film_files::film_desc(&parts[0].1.id)?;
+    let derived = film_files::derived(&args.outputs, &film_desc, has_sensors(&parts[0].1.id));
+    let mut all = args.outputs.clone();
+    all.extend(derived.paths());
+    outputs::check_distinct(&all.iter().collect::<Vec<_>>())?;
+    outputs::prepare(&all)?;
 
     let (first_path, first) = &parts[0];
     let mut film = checkpoint::read(first_path)?.film;
@@ -43,7 +48,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     }
     let id = &first.id;
     let opts = film_files::output_options(id)?;
-    let failed = film_files::write_outputs(&args.outputs, &film, id, &opts);
+    let failed = film_files::write_outputs(&args.outputs, &derived, &film, id, &opts);
     if let Some(e) = failed.into_iter().next() {
         // The parts are untouched: the merge can simply be run again.
         return Err(e.context("merge not written (the parts are unchanged)"));
@@ -60,9 +65,10 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             } else {
                 String::new()
             },
-            film_files::list(&args.outputs)
+            film_files::list(&all)
         );
     }
+    film_files::report_extras(&film, args.quiet);
     if film.first != 0 {
         eprintln!(
             "brume: warning: the merged passes start at {}, not 0: parts are missing",
@@ -70,6 +76,13 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Whether the render's description has `[[sensors]]`.
+fn has_sensors(id: &brume::film::FilmId) -> bool {
+    id.section("sensors")
+        .and_then(|s| s.as_array())
+        .is_some_and(|a| !a.is_empty())
 }
 
 /// Same render, same film shape, adjacent pass ranges, and enough memory for two films.

@@ -5,6 +5,7 @@ mod film_files;
 mod info;
 mod merge;
 mod outputs;
+mod probe;
 mod progress;
 mod render;
 mod spectrum;
@@ -36,6 +37,9 @@ pub enum Command {
     /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
     /// emission spectrum.
     Spectrum(spectrum::SpectrumArgs),
+    /// Read luminance and its standard error back from an EXR output, at a pixel (`--px X,Y`)
+    /// or over a region (`--region X0,Y0,X1,Y1`).
+    Probe(probe::ProbeArgs),
     /// Render variants of a scene (`--vary KEY=V1,V2`) for equal time against a reference and
     /// measure their error: CSV, JSON summary and plots.
     Study(study::StudyArgs),
@@ -117,6 +121,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Info(a) => info::run(&a),
         Command::Study(a) => study::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
+        Command::Probe(a) => probe::run(&a),
     }
 }
 

@@ -39,6 +39,9 @@ pub struct SpectrumColour {
     pub srgb: [f64; 3],
     pub srgb_8bit: [u8; 3],
     pub bin_values: Vec<f32>,
+    /// Of an emission spectrum: lumens per watt of its power over the grid's range, as the
+    /// renderer converts a light's `luminous_flux` (K_m = 683 lm/W, CIE 1931 V(λ)).
+    pub luminous_efficacy: Option<f64>,
 }
 
 fn mat_json(m: &Mat3) -> serde_json::Value {
@@ -132,6 +135,13 @@ pub fn spectrum_colour(req: &SpectrumRequest) -> Result<SpectrumColour, ColourEr
         srgb: enc,
         srgb_8bit: enc.map(|c| (c * 255.0 + 0.5).floor() as u8),
         bin_values: s.as_slice(grid.n).to_vec(),
+        luminous_efficacy: match req.illuminant {
+            Some(_) => None,
+            None => {
+                let w = super::photometry::luminous_weights(&grid)?;
+                super::photometry::luminous_efficacy(&w, s.as_slice(grid.n), &grid)
+            }
+        },
     })
 }
 
@@ -160,11 +170,25 @@ impl SpectrumColour {
             "srgb": self.srgb,
             "srgb_8bit": self.srgb_8bit,
             "bin_values": self.bin_values,
+            "luminous_efficacy_lm_per_w": self.luminous_efficacy,
         });
         serde_json::to_string_pretty(&v).unwrap_or_default()
     }
 
     pub fn to_text(&self) -> String {
+        let mut text = self.colour_text();
+        if let Some(e) = self.luminous_efficacy {
+            let g = &self.request.grid;
+            text.push_str(&format!(
+                "\nluminous efficacy  {e:.3} lm/W  (over {}-{} nm, K_m = 683 lm/W, CIE 1931 V; \
+                 the lumens-to-watts factor of a light with this spectrum)",
+                g.lambda_min, g.lambda_max
+            ));
+        }
+        text
+    }
+
+    fn colour_text(&self) -> String {
         let (g, xyz, xy, lin, code) = (
             &self.request.grid,
             self.xyz,

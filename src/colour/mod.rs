@@ -9,6 +9,7 @@ pub mod describe;
 mod display;
 pub mod matrix;
 mod observer;
+pub mod photometry;
 pub mod rgb;
 mod space;
 

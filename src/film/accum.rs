@@ -12,7 +12,8 @@ use rayon::prelude::*;
 
 use crate::spectrum::SpectralGrid;
 
-use super::SpectralImage;
+use super::sensor::{self, FilmExtras, SensorKind, SensorReading};
+use super::{PassBuffer, SpectralImage};
 
 /// The components a pass estimate is split into (the paper compares them separately).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,74 +43,6 @@ pub(super) fn products_finite(w: &[f32], f: &[f32], scale: f32) -> bool {
         .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite())
 }
 
-/// One pass's estimate per layer, pixel and bin, in radiance units.
-#[derive(Clone, Debug)]
-pub struct PassBuffer {
-    pub pixels: usize,
-    pub n: usize,
-    /// `[layer][pixel][bin]`.
-    pub data: Vec<f32>,
-    /// Samples not added because a value was not finite (reaches `Film::dropped`).
-    pub dropped: u64,
-}
-
-impl PassBuffer {
-    pub fn new(pixels: usize, n: usize) -> Self {
-        Self {
-            pixels,
-            n,
-            data: vec![0.0; LAYERS * pixels * n],
-            dropped: 0,
-        }
-    }
-
-    /// Adds the sample `w * f * scale` (per bin) to a pixel, unless some bin of it is not
-    /// finite: then the whole sample is dropped and counted, so one bad path cannot poison a
-    /// pixel (a NaN would otherwise erase every other sample of the pass in that slot).
-    #[inline]
-    pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
-        if !products_finite(w, f, scale) {
-            self.dropped += 1;
-            return;
-        }
-        let slot = self.slot(layer, pixel);
-        for ((s, w), f) in slot.iter_mut().zip(w).zip(f) {
-            *s += w * f * scale;
-        }
-    }
-
-    /// Adds the sample `v * scale` to a pixel, or drops and counts it (see `splat`).
-    #[inline]
-    pub fn splat_scaled(&mut self, layer: Layer, pixel: usize, v: &[f32], scale: f32) {
-        if !v.iter().fold(true, |ok, x| ok & (x * scale).is_finite()) {
-            self.dropped += 1;
-            return;
-        }
-        for (s, x) in self.slot(layer, pixel).iter_mut().zip(v) {
-            *s += x * scale;
-        }
-    }
-
-    #[inline]
-    pub fn slot(&mut self, layer: Layer, pixel: usize) -> &mut [f32] {
-        let i = (layer as usize * self.pixels + pixel) * self.n;
-        &mut self.data[i..i + self.n]
-    }
-
-    /// Adds `other` elementwise; the order of calls fixes the floating-point result.
-    pub fn add(&mut self, other: &PassBuffer) {
-        self.dropped += other.dropped;
-        self.data
-            .par_chunks_mut(1 << 14)
-            .zip(other.data.par_chunks(1 << 14))
-            .for_each(|(a, b)| a.iter_mut().zip(b).for_each(|(x, y)| *x += *y));
-    }
-
-    pub fn scale(&mut self, s: f32) {
-        self.data.par_iter_mut().for_each(|x| *x *= s);
-    }
-}
-
 /// The film: pass estimates of a contiguous range of passes `first .. first + passes`, summed,
 /// with per-pixel statistics across passes.
 #[derive(Clone, Debug, PartialEq)]
@@ -127,12 +60,20 @@ pub struct Film {
     pub sum_sq: Vec<i128>,
     /// Samples dropped because they were not finite (or beyond `MAX_SAMPLE`).
     pub dropped: u64,
+    /// Sensors and light layers the film keeps.
+    pub extras: FilmExtras,
+    /// `[light][pixel][bin]` sums of each light's part of the image, fixed point at `SUM_SCALE`.
+    pub light_sum: Vec<i128>,
+    /// `[sensor][bin]` sums of the sensors' pass values, fixed point at `SUM_SCALE`.
+    pub sensor_sum: Vec<i128>,
+    /// `[sensor]` sums of the squared photometric pass values, fixed point at `SQ_SCALE`.
+    pub sensor_sq: Vec<i128>,
 }
 
 /// Why two films cannot be merged.
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum MergeError {
-    #[error("films differ in size or spectral grid")]
+    #[error("films differ in size, spectral grid, sensors or light layers")]
     Shape,
     #[error("pass ranges are not adjacent: {0}..{1} then {2}..{3}")]
     Gap(u64, u64, u64, u64),
@@ -145,7 +86,20 @@ impl Film {
 
     /// An empty film whose first pass will be pass `first` of the seed's sequence.
     pub fn starting_at(width: usize, height: usize, grid: SpectralGrid, first: u64) -> Self {
-        let px = width * height * grid.n;
+        Self::with_extras(width, height, grid, first, FilmExtras::default())
+    }
+
+    /// An empty film starting at pass `first` that also keeps `extras` (sensors, light
+    /// layers).
+    pub fn with_extras(
+        width: usize,
+        height: usize,
+        grid: SpectralGrid,
+        first: u64,
+        extras: FilmExtras,
+    ) -> Self {
+        let (px, n) = (width * height * grid.n, grid.n);
+        let (lights, sensors) = (extras.light_layers.len(), extras.sensors.len());
         Self {
             width,
             height,
@@ -155,7 +109,28 @@ impl Film {
             sum: vec![0; LAYERS * px],
             sum_sq: vec![0; px],
             dropped: 0,
+            extras,
+            light_sum: vec![0; lights * px],
+            sensor_sum: vec![0; sensors * n],
+            sensor_sq: vec![0; sensors],
         }
+    }
+
+    /// An empty pass buffer of this film's shape (image, light layers, sensors).
+    pub fn pass_buffer(&self) -> PassBuffer {
+        PassBuffer::with_extras(
+            self.width * self.height,
+            self.grid.n,
+            self.extras.light_layers.len(),
+            self.extras.sensors.len(),
+        )
+    }
+
+    /// Whether `other` has this film's size, spectral grid, sensors and light layers (so
+    /// that passes of one can continue or join the other).
+    pub fn same_shape(&self, other: &Film) -> bool {
+        (self.width, self.height, &self.grid, &self.extras)
+            == (other.width, other.height, &other.grid, &other.extras)
     }
 
     /// The pass index after the last one added.
@@ -192,13 +167,106 @@ impl Film {
             })
             .sum();
         self.dropped += dropped + pass.dropped;
+        self.add_lights(pass);
+        self.dropped += self.add_sensors(pass);
         self.passes += 1;
+    }
+
+    /// Adds each light's part of the pass to its layer (a buffer without light layers adds
+    /// nothing: its light is in no layer). Values beyond `MAX_SAMPLE` are left out, as the
+    /// image leaves them out.
+    fn add_lights(&mut self, pass: &PassBuffer) {
+        if pass.lights != self.extras.light_layers.len() {
+            return;
+        }
+        const BLOCK: usize = 1 << 12;
+        self.light_sum
+            .par_chunks_mut(BLOCK)
+            .zip(pass.light_data.par_chunks(BLOCK))
+            .for_each(|(sum, v)| {
+                for (s, v) in sum.iter_mut().zip(v) {
+                    let v = *v as f64;
+                    if v.abs() <= MAX_SAMPLE {
+                        *s = s.wrapping_add(to_fixed(v, SUM_SCALE));
+                    }
+                }
+            });
+    }
+
+    /// Adds each sensor's value of the pass (luminance sensors from the pass's pixels, the
+    /// others from what the integrator splatted); returns how many were dropped as not finite
+    /// or too large.
+    fn add_sensors(&mut self, pass: &PassBuffer) -> u64 {
+        let n = self.grid.n;
+        let px = self.width * self.height * n;
+        let (medium, surface) = pass.data.split_at(px.min(pass.data.len()));
+        let w = sensor::weights(&self.grid);
+        let mut v = vec![0.0f64; n];
+        let mut dropped = 0;
+        for (k, s) in self.extras.sensors.iter().enumerate() {
+            match s.kind {
+                SensorKind::Luminance { region } => {
+                    sensor::region_mean(region, self.width, n, medium, surface, &mut v)
+                }
+                SensorKind::Illuminance { .. } => {
+                    let from = pass.sensor_data.get(k * n..k * n + n);
+                    for (b, x) in v.iter_mut().enumerate() {
+                        *x = from.map_or(0.0, |f| f[b] as f64);
+                    }
+                }
+            }
+            let y: f64 = v.iter().zip(&w).map(|(v, w)| v * w).sum();
+            if !(y.abs() <= MAX_SAMPLE && v.iter().all(|x| x.abs() <= MAX_SAMPLE)) {
+                dropped += 1;
+                continue;
+            }
+            for (sum, x) in self.sensor_sum[k * n..k * n + n].iter_mut().zip(&v) {
+                *sum = sum.wrapping_add(to_fixed(*x, SUM_SCALE));
+            }
+            self.sensor_sq[k] = self.sensor_sq[k].wrapping_add(to_fixed(y * y, SQ_SCALE));
+        }
+        dropped
+    }
+
+    /// With light layers, the fraction of the image's light (summed over pixels and bins) that
+    /// no light layer holds: 0 up to rounding when every splat named its light.
+    pub fn unattributed(&self) -> Option<f64> {
+        if self.extras.light_layers.is_empty() {
+            return None;
+        }
+        let total: f64 = self.sum.iter().map(|v| *v as f64).sum();
+        let layers: f64 = self.light_sum.iter().map(|v| *v as f64).sum();
+        Some(if total != 0.0 {
+            (total - layers) / total
+        } else {
+            0.0
+        })
+    }
+
+    /// Each sensor's estimate over the film's passes.
+    pub fn sensor_readings(&self) -> Vec<SensorReading> {
+        let n = self.grid.n;
+        self.extras
+            .sensors
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                sensor::reading(
+                    s,
+                    &self.grid,
+                    self.passes,
+                    &self.sensor_sum[k * n..k * n + n],
+                    self.sensor_sq[k],
+                    (SUM_SCALE, SQ_SCALE),
+                )
+            })
+            .collect()
     }
 
     /// Adds the passes of `other`, which must directly follow or precede this film's range.
     /// The result is bit-identical to rendering the union in one run.
     pub fn merge(&mut self, other: &Film) -> Result<(), MergeError> {
-        if (self.width, self.height, &self.grid) != (other.width, other.height, &other.grid) {
+        if !self.same_shape(other) {
             return Err(MergeError::Shape);
         }
         if self.passes > 0 && other.passes > 0 {
@@ -217,11 +285,16 @@ impl Film {
         } else if self.passes == 0 {
             self.first = other.first;
         }
-        for (a, b) in self.sum.iter_mut().zip(&other.sum) {
-            *a = a.wrapping_add(*b);
-        }
-        for (a, b) in self.sum_sq.iter_mut().zip(&other.sum_sq) {
-            *a = a.wrapping_add(*b);
+        for (mine, theirs) in [
+            (&mut self.sum, &other.sum),
+            (&mut self.sum_sq, &other.sum_sq),
+            (&mut self.light_sum, &other.light_sum),
+            (&mut self.sensor_sum, &other.sensor_sum),
+            (&mut self.sensor_sq, &other.sensor_sq),
+        ] {
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                *a = a.wrapping_add(*b);
+            }
         }
         self.passes += other.passes;
         self.dropped += other.dropped;
@@ -255,6 +328,10 @@ impl Film {
             ("medium".into(), layer(sum_m)),
             ("surface".into(), layer(sum_s)),
         ];
+        for (k, name) in self.extras.light_layers.iter().enumerate() {
+            img.layers
+                .push((name.clone(), layer(&self.light_sum[k * px..(k + 1) * px])));
+        }
         img
     }
 }

@@ -2,11 +2,15 @@
 //! `--resume`) and as the part file of a distributed render (`--pass-range`, `brume merge`).
 //!
 //! Layout (little-endian): magic `BRUMEFLM`, format version (u32), seed, scene hash, first
-//! pass, passes, dropped (u64 each), width, height, bins (u32), lambda min and max (f64), in
-//! version 3 only the spectral grid's equal bins and line count (u32 each) and its lines (f64
-//! each), the length of a UTF-8 JSON text (u32) and the text (the render's identity: scene description
-//! and sampling settings, see [`FilmId`]), the sums and sums of squares (i128 each), and an
-//! FNV-1a 64 checksum of everything before it, so a truncated or damaged file is refused.
+//! pass, passes, dropped (u64 each), width, height, bins (u32), lambda min and max (f64), the
+//! spectral grid's equal bins and line count (u32 each) and its lines (f64 each), the length
+//! of a UTF-8 JSON text (u32) and the text (the render's identity: scene description and
+//! sampling settings, see [`FilmId`]), the numbers of light layers and sensors (u32 each), the
+//! length of a JSON text (u32) and the text (the film's extras: its sensors and light layer
+//! names); then the sums and sums of squares (i128 each: pixels, light layers, sensors' values
+//! per bin, sensors' squared photometric values), and an FNV-1a 64 checksum of everything
+//! before it, so a truncated or damaged file is refused. Version 2 files (no lines, no extras)
+//! are still read.
 //!
 //! Reading checks the size the header announces against the file's size before reading the
 //! data, so a damaged header cannot make brume allocate without bound, and a file can be
@@ -21,14 +25,16 @@ use serde::{Deserialize, Serialize};
 use crate::spectrum::{MAX_BINS, SpectralGrid};
 
 use super::identity::{self, Fnv, Sampling};
-use super::{Film, FilmId, LAYERS, atomic};
+use super::{Film, FilmExtras, FilmId, LAYERS, atomic};
 
 const MAGIC: &[u8; 8] = b"BRUMEFLM";
-/// Version 2 added the identity JSON (description and sampling settings). Films of grids
-/// without spectral lines are still written as version 2, byte for byte as before.
-pub const VERSION: u32 = 2;
-/// Version 3 is version 2 plus the spectral lines whose narrow bins split the equal bins.
-pub const VERSION_LINES: u32 = 3;
+/// Version 2 added the identity JSON (description and sampling settings), version 3 the
+/// spectral lines of the grid and the extras (sensors, light layers).
+pub const VERSION: u32 = 3;
+/// The oldest version read.
+const OLDEST: u32 = 2;
+/// Most light layers or sensors accepted on reading.
+const MAX_EXTRAS: u32 = 1 << 16;
 /// Films larger than this many values (pixels x bins) are refused on reading: 2^32 values are
 /// 206 GB of sums, beyond any machine brume runs on.
 pub const MAX_VALUES: u64 = 1 << 32;
@@ -81,9 +87,7 @@ pub enum FilmFileError {
     },
     #[error("{path}: not a brume film file")]
     Magic { path: PathBuf },
-    #[error(
-        "{path}: film file version {found}, this brume reads versions {VERSION} and {VERSION_LINES}"
-    )]
+    #[error("{path}: film file version {found}, this brume reads versions {OLDEST} to {VERSION}")]
     Version { path: PathBuf, found: u32 },
     #[error("{path}: damaged or truncated film file ({what})")]
     Damaged { path: PathBuf, what: &'static str },
@@ -108,20 +112,22 @@ impl<W: Write> Write for Hashing<W> {
 
 /// Writes `film` to `path` atomically (see [`atomic::replace`]).
 pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError> {
+    let io = |e: serde_json::Error| FilmFileError::Io {
+        path: path.to_path_buf(),
+        source: e.into(),
+    };
     let identity = serde_json::to_vec(&StoredIdentity {
         description: id.description.clone(),
         sampling: id.sampling.clone(),
     })
-    .map_err(|e| FilmFileError::Io {
-        path: path.to_path_buf(),
-        source: e.into(),
-    })?;
+    .map_err(io)?;
+    let extras = serde_json::to_vec(&film.extras).map_err(io)?;
     atomic::replace(path, |tmp| {
         let mut w = Hashing {
             inner: BufWriter::with_capacity(1 << 20, File::create(tmp)?),
             hash: Fnv::default(),
         };
-        encode(&mut w, film, id, &identity)?;
+        encode(&mut w, film, id, &identity, &extras)?;
         let sum = w.hash.0;
         w.inner.write_all(&sum.to_le_bytes())?;
         w.inner.flush()
@@ -132,36 +138,44 @@ pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError>
     })
 }
 
-fn encode(w: &mut impl Write, f: &Film, id: &FilmId, identity: &[u8]) -> std::io::Result<()> {
+fn encode(
+    w: &mut impl Write,
+    f: &Film,
+    id: &FilmId,
+    identity: &[u8],
+    extras: &[u8],
+) -> std::io::Result<()> {
+    let u32_of = |v: usize| u32::try_from(v).map_err(|_| std::io::Error::other("film too large"));
     let lines = f.grid.lines();
-    let version = if lines.is_empty() {
-        VERSION
-    } else {
-        VERSION_LINES
-    };
     w.write_all(MAGIC)?;
-    w.write_all(&version.to_le_bytes())?;
+    w.write_all(&VERSION.to_le_bytes())?;
     for v in [id.seed, id.scene_hash, f.first, f.passes, f.dropped] {
         w.write_all(&v.to_le_bytes())?;
     }
     for v in [f.width, f.height, f.grid.n] {
-        let v = u32::try_from(v).map_err(|_| std::io::Error::other("film too large"))?;
-        w.write_all(&v.to_le_bytes())?;
+        w.write_all(&u32_of(v)?.to_le_bytes())?;
     }
     w.write_all(&f.grid.lambda_min.to_le_bytes())?;
     w.write_all(&f.grid.lambda_max.to_le_bytes())?;
-    if !lines.is_empty() {
-        for v in [f.grid.uniform_bins(), lines.len()] {
-            w.write_all(&(v as u32).to_le_bytes())?;
-        }
-        for l in lines {
-            w.write_all(&l.to_le_bytes())?;
-        }
+    for v in [f.grid.uniform_bins(), lines.len()] {
+        w.write_all(&u32_of(v)?.to_le_bytes())?;
+    }
+    for l in lines {
+        w.write_all(&l.to_le_bytes())?;
     }
     let len = u32::try_from(identity.len()).map_err(|_| std::io::Error::other("identity"))?;
     w.write_all(&len.to_le_bytes())?;
     w.write_all(identity)?;
-    for v in f.sum.iter().chain(&f.sum_sq) {
+    for v in [
+        f.extras.light_layers.len(),
+        f.extras.sensors.len(),
+        extras.len(),
+    ] {
+        w.write_all(&u32_of(v)?.to_le_bytes())?;
+    }
+    w.write_all(extras)?;
+    let sums = [&f.sum, &f.sum_sq, &f.light_sum, &f.sensor_sum, &f.sensor_sq];
+    for v in sums.into_iter().flatten() {
         w.write_all(&v.to_le_bytes())?;
     }
     Ok(())
@@ -222,8 +236,20 @@ struct Raw {
     height: usize,
     grid: SpectralGrid,
     identity: Vec<u8>,
+    /// Light layers and sensors, and the extras' JSON (empty for version 2).
+    lights: usize,
+    sensors: usize,
+    extras: Vec<u8>,
     values: usize,
     file_bytes: u64,
+}
+
+impl Raw {
+    /// Number of i128 sums after the header.
+    fn sums(&self) -> usize {
+        let (px, n) = (self.width * self.height, self.grid.n);
+        (LAYERS + 1) * self.values + self.lights * px * n + self.sensors * (n + 1)
+    }
 }
 
 fn open(path: &Path) -> Result<Source<'_>, FilmFileError> {
@@ -255,7 +281,7 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         });
     }
     let found = u32::from_le_bytes([head[8], head[9], head[10], head[11]]);
-    if found != VERSION && found != VERSION_LINES {
+    if !(OLDEST..=VERSION).contains(&found) {
         let path = path.to_path_buf();
         return Err(FilmFileError::Version { path, found });
     }
@@ -263,9 +289,10 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
     let [width, height, n] = [(); 3].map(|()| src.u32());
     let (lambda_min, lambda_max) = (src.u64()?, src.u64()?);
     let (width, height, n) = (width?, height?, n?);
-    let (uniform, lines) = match found {
-        VERSION_LINES => read_lines(src)?,
-        _ => (n, Vec::new()),
+    let (uniform, lines) = if found >= 3 {
+        read_lines(src)?
+    } else {
+        (n, Vec::new())
     };
     let (lambda_min, lambda_max) = (f64::from_bits(lambda_min), f64::from_bits(lambda_max));
     let grid = grid(n, uniform, lambda_min, lambda_max, &lines)
@@ -279,17 +306,46 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         .checked_mul(n)
         .filter(|v| *v <= MAX_VALUES)
         .ok_or_else(|| damaged(path, "absurd film size"))?;
-    let data = (LAYERS as u64 + 1) * values * 16;
-    let line_bytes = if lines.is_empty() {
-        0
-    } else {
+    let line_bytes = if found >= 3 {
         8 + 8 * lines.len() as u64
+    } else {
+        0
     };
-    if FIXED_HEADER + line_bytes + identity_len as u64 + data + 8 != file_bytes {
+    if FIXED_HEADER + line_bytes + identity_len as u64 > file_bytes {
         return Err(damaged(path, "file size does not match the header"));
     }
     let mut identity = vec![0u8; identity_len as usize];
     src.fill(&mut identity)?;
+    let (lights, sensors, extras) = if found >= 3 {
+        let [lights, sensors, len] = [(); 3].map(|()| src.u32());
+        let (lights, sensors, len) = (lights?, sensors?, len?);
+        if lights > MAX_EXTRAS || sensors > MAX_EXTRAS || len > MAX_IDENTITY {
+            return Err(damaged(path, "absurd extras"));
+        }
+        let layer_values = lights as u64 * values;
+        if layer_values > MAX_VALUES {
+            return Err(damaged(path, "absurd film size"));
+        }
+        let at = FIXED_HEADER + line_bytes + identity_len as u64 + 12;
+        if at + len as u64 > file_bytes {
+            return Err(damaged(path, "file size does not match the header"));
+        }
+        let mut extras = vec![0u8; len as usize];
+        src.fill(&mut extras)?;
+        (lights as usize, sensors as usize, extras)
+    } else {
+        (0, 0, Vec::new())
+    };
+    let extras_bytes = if found >= 3 {
+        12 + extras.len() as u64
+    } else {
+        0
+    };
+    let data =
+        ((LAYERS as u64 + 1) * values + lights as u64 * values + sensors as u64 * (n + 1)) * 16;
+    if FIXED_HEADER + line_bytes + identity_len as u64 + extras_bytes + data + 8 != file_bytes {
+        return Err(damaged(path, "file size does not match the header"));
+    }
     Ok(Raw {
         seed: seed?,
         scene_hash: scene_hash?,
@@ -300,15 +356,18 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         height: height as usize,
         grid,
         identity,
+        lights,
+        sensors,
+        extras,
         values: values as usize,
         file_bytes,
     })
 }
 
-/// A version 3 header's equal-bin count and lines (at most `MAX_BINS` of them).
+/// A version 3 header's equal-bin count and lines (at most `MAX_BINS` of them, maybe none).
 fn read_lines(src: &mut Source) -> Result<(u32, Vec<f64>), FilmFileError> {
     let (uniform, count) = (src.u32()?, src.u32()?);
-    if count == 0 || count as usize > MAX_BINS {
+    if count as usize > MAX_BINS {
         return Err(damaged(src.path, "bad spectral grid"));
     }
     let lines = (0..count)
@@ -358,10 +417,11 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
     let mut src = open(path)?;
     let raw = read_raw(&mut src)?;
     let values = raw.values;
-    let mut sums = Vec::with_capacity((LAYERS + 1) * values);
+    let total = raw.sums();
+    let mut sums = Vec::with_capacity(total);
     let mut buf = vec![0u8; 1 << 16];
-    while sums.len() < (LAYERS + 1) * values {
-        let left = ((LAYERS + 1) * values - sums.len()) * 16;
+    while sums.len() < total {
+        let left = (total - sums.len()) * 16;
         let chunk = &mut buf[..left.min(1 << 16)];
         src.fill(chunk)?;
         sums.extend(
@@ -375,7 +435,19 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
     if computed != stored {
         return Err(damaged(path, "checksum mismatch"));
     }
+    let extras: FilmExtras = if raw.extras.is_empty() {
+        FilmExtras::default()
+    } else {
+        serde_json::from_slice(&raw.extras).map_err(|_| damaged(path, "unreadable extras"))?
+    };
+    if (extras.light_layers.len(), extras.sensors.len()) != (raw.lights, raw.sensors) {
+        return Err(damaged(path, "extras do not match their counts"));
+    }
+    let (lights, sensors, n) = (raw.lights, raw.sensors, raw.grid.n);
     let h = header(raw, path)?;
+    let sensor_sq = sums.split_off(total - sensors);
+    let sensor_sum = sums.split_off(sums.len() - sensors * n);
+    let light_sum = sums.split_off(sums.len() - lights * values);
     let sum_sq = sums.split_off(LAYERS * values);
     let film = Film {
         width: h.width,
@@ -386,6 +458,10 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
         sum: sums,
         sum_sq,
         dropped: h.dropped,
+        extras,
+        light_sum,
+        sensor_sum,
+        sensor_sq,
     };
     Ok(FilmFile { film, id: h.id })
 }
@@ -433,7 +509,7 @@ mod tests {
     }
 
     #[test]
-    fn a_grid_with_lines_round_trips_as_version_3_and_without_as_version_2() {
+    fn a_grid_with_lines_round_trips() {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("a.brume");
         let grid = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0, 633.0]).unwrap();
@@ -444,8 +520,6 @@ mod tests {
         assert_eq!(back.film.grid.lines(), [532.0, 633.0]);
         let version =
             |p: &Path| u32::from_le_bytes(std::fs::read(p).unwrap()[8..12].try_into().unwrap());
-        assert_eq!(version(&p), VERSION_LINES);
-        write(&p, &sample().film, &f.id).unwrap();
         assert_eq!(version(&p), VERSION);
     }
 

@@ -7,26 +7,40 @@
 //! Draining chunks into the pass in chunk order makes the pass's floating-point sums depend
 //! only on the chunk boundaries, never on which thread traced which chunk.
 
-use super::accum::{LAYERS, Layer, PassBuffer, products_finite};
+use super::PassBuffer;
+use super::accum::{LAYERS, Layer, products_finite};
 
 pub struct ChunkSplats {
     pixels: usize,
     n: usize,
-    /// `layer * pixels + pixel` of each logged splat.
+    /// Light layers and sensors of the pass this chunk joins.
+    lights: usize,
+    sensors: usize,
+    /// Slot of each logged splat: `layer * pixels + pixel` for the image, then
+    /// `LAYERS * pixels + light * pixels + pixel` for a light layer, then one slot per sensor.
     slots: Vec<u32>,
     /// `n` values per logged splat.
     values: Vec<f32>,
-    /// The dense `[layer][pixel][bin]` sums once the log outgrew them (kept for reuse, zeroed).
+    /// The dense sums over every slot once the log outgrew them (kept for reuse, zeroed).
     dense: Vec<f32>,
     is_dense: bool,
     dropped: u64,
 }
 
 impl ChunkSplats {
+    /// A log for a pass without light layers or sensors.
     pub fn new(pixels: usize, n: usize) -> Self {
+        Self::with_extras(pixels, n, 0, 0)
+    }
+
+    /// A log for a pass with `lights` light layers and `sensors` sensors (see
+    /// `PassBuffer::chunk`).
+    pub fn with_extras(pixels: usize, n: usize, lights: usize, sensors: usize) -> Self {
         Self {
             pixels,
             n,
+            lights,
+            sensors,
             slots: Vec::new(),
             values: Vec::new(),
             dense: Vec::new(),
@@ -35,14 +49,33 @@ impl ChunkSplats {
         }
     }
 
+    fn slot_count(&self) -> usize {
+        (LAYERS + self.lights) * self.pixels + self.sensors
+    }
+
     fn dense_len(&self) -> usize {
-        LAYERS * self.pixels * self.n
+        self.slot_count() * self.n
     }
 
     /// Adds the sample `w * f * scale` (per bin) to a pixel; a sample with a non-finite bin is
     /// dropped whole and counted, as in [`PassBuffer::splat`].
     #[inline]
     pub fn splat(&mut self, layer: Layer, pixel: usize, w: &[f32], f: &[f32], scale: f32) {
+        self.splat_from(layer, pixel, None, w, f, scale);
+    }
+
+    /// [`Self::splat`] of light from light `light`, also added to its light layer when the
+    /// pass keeps light layers (as [`PassBuffer::splat_from`]).
+    #[inline]
+    pub fn splat_from(
+        &mut self,
+        layer: Layer,
+        pixel: usize,
+        light: Option<u32>,
+        w: &[f32],
+        f: &[f32],
+        scale: f32,
+    ) {
         let n = self.n;
         let (w, f) = (&w[..n], &f[..n]);
         if !products_finite(w, f, scale) {
@@ -50,20 +83,50 @@ impl ChunkSplats {
             return;
         }
         let slot = layer as usize * self.pixels + pixel;
+        let light_slot = light
+            .map(|l| l as usize)
+            .filter(|&l| l < self.lights)
+            .map(|l| (LAYERS + l) * self.pixels + pixel);
+        for s in std::iter::once(slot).chain(light_slot) {
+            self.add_values(s, w.iter().zip(f).map(|(w, f)| w * f * scale));
+        }
+    }
+
+    /// Adds `value * scale` (per bin) to sensor `sensor` (as [`PassBuffer::splat_sensor`]).
+    #[inline]
+    pub fn splat_sensor(&mut self, sensor: usize, value: &[f32], scale: f32) {
+        if sensor >= self.sensors {
+            return;
+        }
+        let value = &value[..self.n];
+        if !value
+            .iter()
+            .fold(true, |ok, x| ok & (x * scale).is_finite())
+        {
+            self.dropped += 1;
+            return;
+        }
+        let slot = (LAYERS + self.lights) * self.pixels + sensor;
+        self.add_values(slot, value.iter().map(|x| x * scale));
+    }
+
+    /// Logs (or adds to the dense buffer) the `n` values of one splat into `slot`.
+    #[inline]
+    fn add_values(&mut self, slot: usize, values: impl Iterator<Item = f32>) {
+        let n = self.n;
         if self.is_dense {
             let d = &mut self.dense[slot * n..slot * n + n];
-            for ((d, w), f) in d.iter_mut().zip(w).zip(f) {
-                *d += w * f * scale;
+            for (d, v) in d.iter_mut().zip(values) {
+                *d += v;
             }
             return;
         }
         if self.values.len() + n > self.dense_len() {
             self.go_dense();
-            return self.splat(layer, pixel, w, f, scale);
+            return self.add_values(slot, values);
         }
         self.slots.push(slot as u32);
-        self.values
-            .extend(w.iter().zip(f).map(|(w, f)| w * f * scale));
+        self.values.extend(values);
     }
 
     /// Replays the log into the dense buffer; later splats go there directly.
@@ -84,25 +147,50 @@ impl ChunkSplats {
         self.is_dense = true;
     }
 
+    /// The values of slot `slot` in `buf` (image, light layers, then sensors).
+    fn target<'a>(&self, buf: &'a mut PassBuffer, slot: usize) -> &'a mut [f32] {
+        let (n, image) = (self.n, LAYERS * self.pixels);
+        let lights = image + self.lights * self.pixels;
+        let (data, i) = if slot < image {
+            (&mut buf.data, slot)
+        } else if slot < lights {
+            (&mut buf.light_data, slot - image)
+        } else {
+            (&mut buf.sensor_data, slot - lights)
+        };
+        &mut data[i * n..i * n + n]
+    }
+
     /// Adds everything into `buf` and empties the chunk (keeping its allocations for the next).
     pub fn drain_into(&mut self, buf: &mut PassBuffer) {
         let n = self.n;
-        debug_assert_eq!((buf.pixels, buf.n), (self.pixels, n));
+        debug_assert_eq!(
+            (buf.pixels, buf.n, buf.lights, buf.sensors),
+            (self.pixels, n, self.lights, self.sensors)
+        );
         buf.dropped += std::mem::take(&mut self.dropped);
         if self.is_dense {
-            for (b, d) in buf.data.iter_mut().zip(self.dense.iter_mut()) {
-                *b += *d;
-                *d = 0.0;
+            let dense = std::mem::take(&mut self.dense);
+            for (slot, d) in dense.chunks_exact(n).enumerate() {
+                for (b, d) in self.target(buf, slot).iter_mut().zip(d) {
+                    *b += *d;
+                }
             }
+            self.dense = dense;
+            self.dense.iter_mut().for_each(|d| *d = 0.0);
             self.is_dense = false;
             return;
         }
-        for (slot, v) in self.slots.iter().zip(self.values.chunks_exact(n)) {
-            let i = *slot as usize * n;
-            for (b, v) in buf.data[i..i + n].iter_mut().zip(v) {
+        let (slots, values) = (
+            std::mem::take(&mut self.slots),
+            std::mem::take(&mut self.values),
+        );
+        for (slot, v) in slots.iter().zip(values.chunks_exact(n)) {
+            for (b, v) in self.target(buf, *slot as usize).iter_mut().zip(v) {
                 *b += *v;
             }
         }
+        (self.slots, self.values) = (slots, values);
         self.slots.clear();
         self.values.clear();
     }

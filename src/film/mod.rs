@@ -5,12 +5,18 @@ mod accum;
 pub mod atomic;
 pub mod checkpoint;
 mod chunk;
+#[cfg(test)]
+mod extras_tests;
 mod identity;
 mod image;
 pub mod output;
+mod pass;
+mod sensor;
 
-pub use accum::{Film, LAYERS, Layer, MAX_SAMPLE, MergeError, PassBuffer};
+pub use accum::{Film, LAYERS, Layer, MAX_SAMPLE, MergeError};
 pub use checkpoint::{FilmFile, FilmFileError, FilmHeader};
 pub use chunk::ChunkSplats;
 pub use identity::{Difference, FilmId, IdentityError, Mismatch, PER_RUN_KEYS, Sampling};
 pub use image::SpectralImage;
+pub use pass::PassBuffer;
+pub use sensor::{FilmExtras, Sensor, SensorKind, SensorReading};

@@ -3,8 +3,12 @@
 //! sRGB). Files are written atomically (`atomic::replace`), so an existing output is never left
 //! half-written.
 
+mod exposure;
 mod exr;
+pub mod false_colour;
 mod png;
+pub mod probe;
+pub mod sensors;
 
 use std::path::{Path, PathBuf};
 
@@ -12,7 +16,8 @@ use crate::colour::{Cat, ColourSpace, FilmToRgb, Observer, ViewTransform};
 
 use super::SpectralImage;
 
-pub use exr::spectral_channel_name;
+pub use exposure::{Exposure, Units, metered_stops};
+pub use exr::{UNITS_ATTRIBUTE, spectral_channel_name};
 
 #[derive(Clone, Copy, Debug, Default)]
 pub struct OutputOptions {
@@ -20,8 +25,10 @@ pub struct OutputOptions {
     pub colour_space: ColourSpace,
     pub observer: Observer,
     pub view: ViewTransform,
-    /// Exposure in stops applied before the view transform (PNG only).
-    pub exposure: f32,
+    /// Exposure applied before the view transform (PNG only): stops, or metered.
+    pub exposure: Exposure,
+    /// What the EXR's colour channels hold: radiance-scaled values, or cd/m² (Y).
+    pub units: Units,
     /// EXR channels as 16-bit half floats instead of 32-bit floats.
     pub half: bool,
     /// Add the Fichet et al. (JCGT 2021) spectral channels `S0.<centre>nm` to the EXR.

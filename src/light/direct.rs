@@ -131,7 +131,7 @@ impl Light {
                 ..
             } => Some(Anchor::Point {
                 position: *position,
-                cone: Some((frame.n, profile.cos_edge())),
+                cone: profile.cone_cos().map(|c| (frame.n, c)),
             }),
             Light::Area { shape, .. } => {
                 let area = geometry.area(*shape);

@@ -20,12 +20,18 @@ pub enum DirectChoice {
 }
 
 /// All lights, picked for forward rays in proportion to their total power (their bins weighted
-/// by width, [`SpectralGrid::weighted_sum`]: a line's narrow bin holds a high density).
+/// by width, [`SpectralGrid::weighted_sum`]: a line's narrow bin holds a high density) times
+/// their importance (default 1). The pick probability divides the flux a ray carries, so
+/// importance changes how many forward rays a light gets, never the expected image.
 #[derive(Clone, Debug)]
 pub struct LightSet {
     lights: Vec<Light>,
     /// Per light: how its direct light is handled under next-event estimation.
     direct: Vec<DirectChoice>,
+    /// Per light: total power (bins weighted by width; 0 when not finite and positive).
+    power: Vec<f64>,
+    /// Per light: multiplier of its share of forward rays.
+    importance: Vec<f32>,
     /// Cumulative pick probabilities.
     cdf: Vec<f32>,
     probs: Vec<f32>,
@@ -33,20 +39,58 @@ pub struct LightSet {
 
 impl LightSet {
     pub fn new(lights: Vec<Light>, geometry: &Geometry, grid: &SpectralGrid) -> LightSet {
-        let weights: Vec<f64> = lights
+        let power: Vec<f64> = lights
             .iter()
             .map(|l| {
                 let p = grid.weighted_sum(&l.power(geometry));
                 if p.is_finite() && p > 0.0 { p } else { 0.0 }
             })
             .collect();
+        let n = lights.len();
+        let mut set = LightSet {
+            lights,
+            direct: vec![DirectChoice::Auto; n],
+            power,
+            importance: vec![1.0; n],
+            cdf: Vec::new(),
+            probs: Vec::new(),
+        };
+        set.pick_table();
+        set
+    }
+
+    /// Sets each light's importance (`importance` in the order of the lights; values that are
+    /// not finite and >= 0 count as 1).
+    pub fn with_importance(mut self, importance: Vec<f32>) -> Self {
+        if importance.len() == self.lights.len() {
+            self.importance = importance
+                .into_iter()
+                .map(|v| if v.is_finite() && v >= 0.0 { v } else { 1.0 })
+                .collect();
+            self.pick_table();
+        }
+        self
+    }
+
+    /// Light `i`'s importance.
+    pub fn importance(&self, i: usize) -> f32 {
+        self.importance.get(i).copied().unwrap_or(1.0)
+    }
+
+    fn pick_table(&mut self) {
+        let weights: Vec<f64> = self
+            .power
+            .iter()
+            .zip(&self.importance)
+            .map(|(p, i)| p * *i as f64)
+            .collect();
         let total: f64 = weights.iter().sum();
-        let probs: Vec<f32> = weights
+        self.probs = weights
             .iter()
             .map(|w| if total > 0.0 { (w / total) as f32 } else { 0.0 })
             .collect();
         let mut acc = 0.0f64;
-        let cdf = weights
+        self.cdf = weights
             .iter()
             .map(|w| {
                 acc += w;
@@ -57,13 +101,6 @@ impl LightSet {
                 }
             })
             .collect();
-        let direct = vec![DirectChoice::Auto; lights.len()];
-        LightSet {
-            lights,
-            direct,
-            cdf,
-            probs,
-        }
     }
 
     pub fn lights(&self) -> &[Light] {

@@ -2,6 +2,8 @@
 
 mod beam;
 mod direct;
+pub mod goniometric;
+pub mod ies;
 mod light_set;
 mod spot;
 
@@ -15,8 +17,10 @@ use crate::spectrum::Spectrum;
 use beam::Beam;
 
 pub use direct::{Anchor, Arrival};
+pub use goniometric::{Goniometric, ProfileError};
+pub use ies::{IesData, IesError};
 pub use light_set::{DirectChoice, LightSet};
-pub use spot::SpotProfile;
+pub use spot::{Cone, SpotProfile};
 
 /// A forward ray leaving a light and the spectral flux it carries (W/nm per bin), already divided
 /// by every sampling probability, so that E[flux] equals the light's power.
@@ -37,7 +41,7 @@ pub enum Light {
     },
     /// Isotropic point light.
     Point { position: Vec3, power: Spectrum },
-    /// Point light under a conical shade.
+    /// Point light under a conical shade, or with a tabulated (IES) distribution.
     Spot {
         position: Vec3,
         frame: Frame,
@@ -99,6 +103,23 @@ impl Light {
             frame: Frame::new(direction.normalize_or(Vec3::NEG_Z)),
             power,
             profile: SpotProfile::new(half_angle_deg, soft_edge_deg),
+        }
+    }
+
+    /// A point light whose power `power` is spread as the table `profile` says, its gamma = 0
+    /// axis along `frame.n` and its C = 0 half-plane towards `frame.s` (C = 90 towards
+    /// `frame.t`).
+    pub fn profiled(
+        position: Vec3,
+        frame: Frame,
+        power: Spectrum,
+        profile: std::sync::Arc<Goniometric>,
+    ) -> Light {
+        Light::Spot {
+            position,
+            frame,
+            power,
+            profile: SpotProfile::Table(profile),
         }
     }
 
@@ -242,7 +263,7 @@ impl Light {
                 power,
                 profile,
                 ..
-            } => *power * profile.intensity_fraction(frame.to_local(dir.normalize()).z),
+            } => *power * profile.fraction(frame.to_local(dir.normalize())),
             _ => Spectrum::ZERO,
         }
     }

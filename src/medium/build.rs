@@ -16,6 +16,35 @@ pub struct MediumParts<'a> {
     pub g: Option<f32>,
     pub phase: Option<&'a PhaseDesc>,
     pub droplets: Option<&'a DropletsDesc>,
+    /// Grey fog given by its meteorological optical range (m) and single-scattering albedo:
+    /// replaces `sigma_s` and `sigma_a`.
+    pub visibility: Option<Visibility>,
+}
+
+/// A grey medium given by its visibility: extinction ln(20) / `metres` in every bin (the
+/// meteorological optical range of a grey medium, whatever the lamp), `albedo` of it
+/// scattered (default 1: all scattering, as for water fog), the rest absorbed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Visibility {
+    pub metres: f32,
+    pub albedo: f32,
+}
+
+impl Visibility {
+    /// `sigma_t` (1/m) of a grey medium of this visibility.
+    pub fn sigma_t(&self) -> f32 {
+        (20f64.ln() / self.metres as f64) as f32
+    }
+}
+
+/// What a medium's description gives its coefficients by, for the checks.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CoefficientKeys {
+    pub sigma_s: bool,
+    /// `sigma_a` given and not zero.
+    pub sigma_a: bool,
+    pub visibility: Option<f32>,
+    pub albedo: Option<f32>,
 }
 
 /// A built medium and, for droplet fog, the Lorenz–Mie results it came from.
@@ -43,20 +72,23 @@ fn keyed(key: &str) -> impl Fn(MediumError) -> KeyedError + '_ {
 /// Problems a medium description has on its face: (key relative to the medium, message).
 /// `exists` tells whether a file named in the scene exists.
 pub fn check(
-    has_sigma_s: bool,
+    keys: CoefficientKeys,
     g: Option<f32>,
     phase: Option<&PhaseDesc>,
     droplets: Option<&DropletsDesc>,
     exists: &dyn Fn(&str) -> bool,
 ) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    match (has_sigma_s, droplets.is_some()) {
-        (false, false) => out.push((String::new(), "needs `sigma_s` or `[droplets]`".into())),
+    let mut out = check_visibility(keys, droplets.is_some());
+    match (keys.sigma_s, droplets.is_some()) {
+        (false, false) if keys.visibility.is_none() => out.push((
+            String::new(),
+            "needs `sigma_s`, `visibility` or `[droplets]`".into(),
+        )),
         (true, true) => out.push((
             "sigma_s".into(),
             "droplets give the scattering coefficient: drop `sigma_s`".into(),
         )),
-        (true, false) | (false, true) => {}
+        (false, false) | (true, false) | (false, true) => {}
     }
     if let Some(g) = g {
         if !(g.is_finite() && g.abs() < 1.0) {
@@ -99,6 +131,53 @@ pub fn check(
     out
 }
 
+/// The checks of `visibility` and `albedo`.
+fn check_visibility(keys: CoefficientKeys, droplets: bool) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let Some(v) = keys.visibility else {
+        if keys.albedo.is_some() {
+            out.push((
+                "albedo".into(),
+                "goes with `visibility` (give `sigma_s` and `sigma_a` otherwise)".into(),
+            ));
+        }
+        return out;
+    };
+    if !(v.is_finite() && v > 0.0) {
+        out.push((
+            "visibility".into(),
+            format!("must be a distance > 0 m, got {v}"),
+        ));
+    }
+    for (given, key, instead) in [
+        (
+            keys.sigma_s,
+            "sigma_s",
+            "`visibility` gives the extinction: drop `sigma_s`",
+        ),
+        (
+            keys.sigma_a,
+            "sigma_a",
+            "`visibility` gives the extinction: use `albedo` for absorption",
+        ),
+        (
+            droplets,
+            "droplets",
+            "give the fog by `visibility` or by `[droplets]` (which has its own `visibility`)",
+        ),
+    ] {
+        if given {
+            out.push((key.into(), instead.into()));
+        }
+    }
+    if let Some(a) = keys.albedo
+        && !(0.0..=1.0).contains(&a)
+    {
+        out.push(("albedo".into(), format!("must be in [0, 1], got {a}")));
+    }
+    out
+}
+
 /// Builds the medium for `grid`; files are resolved by `resolve`. Defaults: no phase keys
 /// means isotropic HG (g = 0); droplets add their absorption to `sigma_a`.
 pub fn build(
@@ -133,8 +212,15 @@ pub fn build(
         None => (Phase::hg(parts.g.unwrap_or(0.0)).map_err(keyed("g"))?, "g"),
     };
     let zero = Spectrum::ZERO;
-    let ss = parts.sigma_s.unwrap_or(&zero);
-    let medium = HomogeneousMedium::with_phase(ss, parts.sigma_a, phase, n).map_err(|e| {
+    let (ss, sa) = match parts.visibility {
+        Some(v) => {
+            let st = v.sigma_t();
+            let ss = Spectrum::splat(st * v.albedo, n);
+            (ss, Spectrum::splat(st - ss.0[0], n))
+        }
+        None => (*parts.sigma_s.unwrap_or(&zero), *parts.sigma_a),
+    };
+    let medium = HomogeneousMedium::with_phase(&ss, &sa, phase, n).map_err(|e| {
         let key = match e {
             MediumError::Coefficient { what, .. } => what,
             _ => key,

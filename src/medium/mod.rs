@@ -16,7 +16,8 @@ mod spectral;
 mod walk;
 
 pub use build::{
-    BuiltMedium, KeyedError, MediumParts, build as build_medium, check as check_medium,
+    BuiltMedium, CoefficientKeys, KeyedError, MediumParts, Visibility, build as build_medium,
+    check as check_medium,
 };
 pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};

@@ -4,25 +4,38 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use serde::Deserializer;
 use serde::de::{self, IgnoredAny, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer};
 
-/// For `#[serde(deserialize_with = "exact")]` on a `[f32; N]` field.
-pub fn exact<'de, D: Deserializer<'de>, const N: usize>(d: D) -> Result<[f32; N], D::Error> {
-    d.deserialize_seq(Exact::<N>(PhantomData))
+/// For `#[serde(deserialize_with = "exact")]` on a `[f32; N]` (or `[u32; N]`) field.
+pub fn exact<'de, D, T, const N: usize>(d: D) -> Result<[T; N], D::Error>
+where
+    D: Deserializer<'de>,
+    T: Deserialize<'de> + Default + Copy,
+{
+    d.deserialize_seq(Exact::<T, N>(PhantomData))
 }
 
-struct Exact<const N: usize>(PhantomData<[f32; N]>);
+/// As [`exact`] for an optional field (`#[serde(default, deserialize_with = "exact_opt")]`).
+pub fn exact_opt<'de, D, T, const N: usize>(d: D) -> Result<Option<[T; N]>, D::Error>
+where
+    D: Deserializer<'de>,
+    T: Deserialize<'de> + Default + Copy,
+{
+    exact(d).map(Some)
+}
 
-impl<'de, const N: usize> Visitor<'de> for Exact<N> {
-    type Value = [f32; N];
+struct Exact<T, const N: usize>(PhantomData<[T; N]>);
+
+impl<'de, T: Deserialize<'de> + Default + Copy, const N: usize> Visitor<'de> for Exact<T, N> {
+    type Value = [T; N];
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
         write!(f, "an array of {N} numbers")
     }
 
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<[f32; N], A::Error> {
-        let mut out = [0.0; N];
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<[T; N], A::Error> {
+        let mut out = [T::default(); N];
         for (i, v) in out.iter_mut().enumerate() {
             *v = seq
                 .next_element()?

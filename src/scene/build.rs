@@ -5,15 +5,17 @@
 use glam::Vec3;
 
 use super::builder::{Builder, Inputs};
-use super::desc::{ShapeDesc, SpectrumRef};
+use super::desc::{SceneDesc, ShapeDesc, SpectrumRef};
 use super::error::{SceneError, SceneWarning};
 use super::loaded::LoadedScene;
 use super::materials;
 use super::media;
+use super::shapes;
 use crate::camera::Camera;
+use crate::film::FilmExtras;
 use crate::geometry::Geometry;
 use crate::integrator::Integrator;
-use crate::light::{DirectChoice, Light, LightSet};
+use crate::light::{Light, LightSet};
 use crate::material::Material;
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
@@ -56,20 +58,7 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
     let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
     let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
-    // Area lights first (in shape order), then [[lights]]; each keeps its `direct` choice.
-    let mut direct: Vec<DirectChoice> = area_lights
-        .iter()
-        .map(|(shape, _)| d.shapes[*shape as usize].common.direct)
-        .collect();
-    let mut lights: Vec<Light> = area_lights
-        .into_iter()
-        .map(|(shape, radiance)| Light::area(shape, radiance, false))
-        .collect();
-    for (i, l) in d.lights.iter().enumerate() {
-        lights.push(l.build(&b, &format!("lights.{i}"))?);
-        direct.push(l.common.direct);
-    }
-    let lights = LightSet::new(lights, &geometry, &grid).with_direct(direct);
+    let lights = build_lights(&b, d, &geometry, area_lights)?;
     let camera = d.camera.build();
     let (world_min, world_max) = world_box(&geometry, &camera, d.integrator.radius);
     let warnings = warnings(scene, &geometry, &lights);
@@ -87,9 +76,73 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
         outside_medium: outside,
         world_min,
         world_max,
+        film_extras: film_extras(d),
     };
     built.camera_medium = built.medium_at(camera.position());
     Ok((built, warnings))
+}
+
+/// Area lights first (in shape order), then `[[lights]]`; each keeps its `direct` choice and
+/// its importance. An emitter given by its luminous flux is scaled here, its area known.
+fn build_lights(
+    b: &Builder,
+    d: &SceneDesc,
+    geometry: &Geometry,
+    area_lights: Vec<(u32, Spectrum)>,
+) -> Result<LightSet, SceneError> {
+    let mut direct = Vec::new();
+    let mut importance = Vec::new();
+    let mut lights = Vec::new();
+    for (shape, radiance) in area_lights {
+        let s = &d.shapes[shape as usize].common;
+        let radiance = match s.luminous_flux {
+            Some(lm) => {
+                let key = format!("shapes.{shape}");
+                shapes::scale_to_flux(b, &key, radiance, lm, geometry.area(shape))?
+            }
+            None => radiance,
+        };
+        lights.push(Light::area(shape, radiance, false));
+        direct.push(s.direct);
+        importance.push(s.importance);
+    }
+    for (i, l) in d.lights.iter().enumerate() {
+        lights.push(l.build(b, &format!("lights.{i}"))?);
+        direct.push(l.common.direct);
+        importance.push(l.common.importance);
+    }
+    Ok(LightSet::new(lights, geometry, &b.grid)
+        .with_direct(direct)
+        .with_importance(importance))
+}
+
+/// The sensors, and the light layers' names (`light<index>.<kind>`, in the order of the
+/// scene's lights: emitting shapes first) when `film.light_layers` is on.
+pub fn film_extras(d: &SceneDesc) -> FilmExtras {
+    let size = (d.camera.width, d.camera.height);
+    let sensors = d
+        .sensors
+        .iter()
+        .enumerate()
+        .map(|(i, s)| s.build(i, size))
+        .collect();
+    let mut light_layers = Vec::new();
+    if d.film.light_layers {
+        let kinds = d
+            .shapes
+            .iter()
+            .filter(|s| s.common.emit.is_some())
+            .map(|_| "area")
+            .chain(d.lights.iter().map(|l| l.kind_name()));
+        light_layers = kinds
+            .enumerate()
+            .map(|(i, k)| format!("light{i}.{k}"))
+            .collect();
+    }
+    FilmExtras {
+        sensors,
+        light_layers,
+    }
 }
 
 /// The integrator the scene file's `[integrator]` table describes, for its built `scene`.

@@ -32,6 +32,7 @@ pub fn build_medium(
         g: desc.g,
         phase: desc.phase.as_ref(),
         droplets: desc.droplets.as_ref(),
+        visibility: desc.grey_visibility(),
     };
     crate::medium::build_medium(parts, grid, &|f| source.resolve(f)).map_err(|e| {
         let k = format!("{key}.{}", e.key);

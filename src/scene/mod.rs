@@ -19,6 +19,7 @@ mod loaded;
 mod materials;
 mod media;
 mod path;
+mod sensors;
 mod shapes;
 mod source;
 mod spectra;
@@ -28,7 +29,7 @@ mod tagged;
 mod validate;
 
 pub use crate::world::Scene;
-pub use build::{LARGE_RADIUS, build, build_integrator, build_with_warnings};
+pub use build::{LARGE_RADIUS, build, build_integrator, build_with_warnings, film_extras};
 pub use camera::{MAX_PIXELS, MAX_SIDE};
 pub use check::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_SIDE};
 pub use error::{Origin, SceneError, SceneWarning};

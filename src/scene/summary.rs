@@ -5,6 +5,7 @@ use std::fmt;
 use super::loaded::LoadedScene;
 use super::media::build_medium;
 use super::spectra::SpectrumResolver;
+use crate::colour::photometry::meteorological_optical_range;
 use crate::medium::droplets::visibility;
 
 pub struct Summary {
@@ -111,6 +112,7 @@ fn media_report(scene: &LoadedScene) -> Vec<String> {
                 o.nodes
             ));
         }
+        out.push(mor_line(&m.sigma_t, &grid));
         out.push("  bins (nm)       sigma_t (1/m)  albedo     g        visibility (m)".into());
         let (albedo, g) = (m.albedo(), m.phase.g_bins(m.n));
         let per = m.n.div_ceil(MEDIUM_ROWS);
@@ -138,6 +140,17 @@ fn media_report(scene: &LoadedScene) -> Vec<String> {
         }
     }
     out
+}
+
+/// The medium's meteorological optical range (CIE: where a collimated 2700 K beam keeps 5 % of
+/// its luminous flux; see `colour::photometry`).
+fn mor_line(sigma_t: &crate::spectrum::Spectrum, grid: &crate::spectrum::SpectralGrid) -> String {
+    let head = "  meteorological optical range (CIE, 2700 K, V(λ)):";
+    match meteorological_optical_range(sigma_t.as_slice(grid.n), grid) {
+        Ok(Some(d)) => format!("{head} {d:.6} m"),
+        Ok(None) => format!("{head} unbounded (no extinction where V(λ) > 0)"),
+        Err(e) => format!("{head} unknown ({e})"),
+    }
 }
 
 impl fmt::Display for Summary {

@@ -5,6 +5,7 @@
 use super::check::{Checker, Names, Problem};
 use super::desc::{FilmDesc, SceneDesc};
 use super::loaded::LoadedScene;
+use crate::film::output::Exposure;
 use crate::spectrum::MAX_BINS;
 
 pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
@@ -41,6 +42,7 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     {
         c.problems.push(p);
     }
+    super::sensors::check_all(&mut c, &d.sensors, (d.camera.width, d.camera.height));
     c.problems
 }
 
@@ -68,13 +70,23 @@ fn film(c: &mut Checker, f: &FilmDesc) {
     if f.lambda_max <= f.lambda_min {
         c.fail("film.lambda_max", "must be greater than film.lambda_min");
     }
-    c.range(
-        "film.exposure",
-        f.exposure as f64,
-        -64.0,
-        64.0,
-        "in [-64, 64] stops",
-    );
+    if let Exposure::Stops(e) = f.exposure {
+        c.range(
+            "film.exposure",
+            e as f64,
+            -64.0,
+            64.0,
+            "in [-64, 64] stops (or \"auto\")",
+        );
+    }
+    if let Some([lo, hi]) = f.false_colour_range
+        && !(lo > 0.0 && hi > lo && hi.is_finite())
+    {
+        c.fail(
+            "film.false_colour_range",
+            format!("must be [low, high] cd/m² with 0 < low < high, got [{lo}, {hi}]"),
+        );
+    }
     for (i, o) in f.outputs.iter().enumerate() {
         if crate::film::output::format_of(std::path::Path::new(o)).is_err() {
             c.fail(

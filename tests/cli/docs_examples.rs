@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const SUBCOMMANDS: [&str; 5] = ["render", "merge", "info", "spectrum", "study"];
+const SUBCOMMANDS: [&str; 6] = ["render", "merge", "info", "spectrum", "study", "probe"];
 
 /// Words the documents use as placeholders for the reader's own values.
 const PLACEHOLDERS: [&str; 17] = [

@@ -42,14 +42,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let resumed_ref = resumed.as_ref().map(|r| (resume_path, r));
     let plan = plan::plan(args, loaded.desc.integrator.passes, resumed_ref, &cmd)?;
-    let outputs = targets::outputs(args, &loaded, plan.range)?;
+    let (outputs, derived) = targets::outputs(args, &loaded, plan.range)?;
     check_memory(&loaded, args.force)?;
     let pool = super::thread_pool(args.threads)?;
 
     let start = Instant::now();
     let (film, interrupted) = pool.install(|| render(args, &loaded, &id, &plan, resumed, &stop))?;
-    let saved = save(args, &outputs, &film, &id)?;
+    let saved = save(args, (&outputs, &derived), &film, &id)?;
     report(args, &film, &id, interrupted, start, &saved, &cmd);
+    if film.passes > 0 && plan.range.is_none() {
+        film_files::report_extras(&film, args.quiet);
+    }
     Ok(if interrupted {
         ExitCode::from(interrupt::INTERRUPTED)
     } else {
@@ -105,12 +108,29 @@ fn render(
     }
     let integrator = brume::scene::build_integrator(loaded, &scene)?;
     let seed = id.seed;
-    let mut renderer = match resumed {
+    // The film keeps the scene's sensors and light layers from the start.
+    let film = match resumed {
         Some(r) => {
-            Renderer::resume(&scene, integrator, seed, r.film).map_err(anyhow::Error::msg)?
+            anyhow::ensure!(
+                r.film.extras == scene.film_extras,
+                "the film being resumed keeps other sensors or light layers than the scene"
+            );
+            r.film
         }
-        None => Renderer::starting_at(&scene, integrator, seed, plan.first),
+        None => {
+            let (w, h) = scene.camera.resolution();
+            let extras = scene.film_extras.clone();
+            Film::with_extras(
+                w as usize,
+                h as usize,
+                scene.grid.clone(),
+                plan.first,
+                extras,
+            )
+        }
     };
+    let mut renderer =
+        Renderer::resume(&scene, integrator, seed, film).map_err(anyhow::Error::msg)?;
     let total = match plan.budget {
         Budget::Passes(p) => p as u64,
         Budget::Time(t) => t.ceil() as u64,
@@ -145,7 +165,12 @@ struct Saved {
 /// Writes the outputs and the checkpoint. A film without passes (interrupted before its first)
 /// writes nothing: it would replace an earlier file with an empty one. When an output fails,
 /// the film is saved somewhere safe and the error says where.
-fn save(args: &RenderArgs, outputs: &[PathBuf], film: &Film, id: &FilmId) -> anyhow::Result<Saved> {
+fn save(
+    args: &RenderArgs,
+    (outputs, derived): (&[PathBuf], &film_files::Derived),
+    film: &Film,
+    id: &FilmId,
+) -> anyhow::Result<Saved> {
     let mut targets: Vec<PathBuf> = Vec::new();
     if film.passes > 0 {
         targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
@@ -166,6 +191,11 @@ fn save(args: &RenderArgs, outputs: &[PathBuf], film: &Film, id: &FilmId) -> any
             Ok(()) => written.push(t.clone()),
             Err(e) => failed.push(e),
         }
+    }
+    if film.passes > 0 {
+        let (w, f) = derived.write(film, &mut image);
+        written.extend(w);
+        failed.extend(f);
     }
     let film_file = written.iter().find(|p| is_film(p)).cloned();
     if failed.is_empty() {

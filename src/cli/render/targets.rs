@@ -6,17 +6,18 @@ use brume::film::output;
 use brume::scene::LoadedScene;
 
 use super::super::RenderArgs;
-use super::super::film_files::{FILM_EXT, is_film_path};
+use super::super::film_files::{self, Derived, FILM_EXT, is_film_path};
 use super::super::outputs;
 
 /// The outputs (`-o`, else a part file for `--pass-range`, else the scene's `film.outputs`,
 /// else SCENE.exr and SCENE.png), checked: known formats, a film file for a pass range, no
-/// file named twice, every file writable (leftover temporary files of killed runs removed).
+/// file named twice, every file writable (leftover temporary files of killed runs removed);
+/// with the files derived from them (false-colour maps, sensor tables).
 pub fn outputs(
     args: &RenderArgs,
     scene: &LoadedScene,
     range: Option<(u64, u64)>,
-) -> anyhow::Result<Vec<PathBuf>> {
+) -> anyhow::Result<(Vec<PathBuf>, Derived)> {
     let stem = args
         .scene
         .scene
@@ -57,8 +58,11 @@ pub fn outputs(
              (-o NAME.{FILM_EXT}) and combine the parts with `brume merge`"
         );
     }
-    let all: Vec<&PathBuf> = paths.iter().chain(&args.checkpoint).collect();
+    let sensors = !scene.desc.sensors.is_empty();
+    let derived = film_files::derived(&paths, &scene.desc.film, sensors);
+    let extra = derived.paths();
+    let all: Vec<&PathBuf> = paths.iter().chain(&args.checkpoint).chain(&extra).collect();
     outputs::check_distinct(&all)?;
     outputs::prepare(&all.into_iter().cloned().collect::<Vec<_>>())?;
-    Ok(paths)
+    Ok((paths, derived))
 }

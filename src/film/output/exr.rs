@@ -6,9 +6,14 @@ use std::path::Path;
 use exr::meta::attribute::Chromaticities;
 use exr::prelude::*;
 
-use super::{OutputOptions, to_rgb};
+use super::{OutputOptions, Units, to_rgb};
+use crate::colour::photometry::luminance_scale;
 use crate::colour::{ColourSpace, FilmToRgb};
 use crate::film::SpectralImage;
+
+/// The header attribute naming what the colour channels hold: "radiometric" or
+/// "photometric" (Y in cd/m²).
+pub const UNITS_ATTRIBUTE: &str = "brumeUnits";
 
 /// The spectral layout's name for an emissive (unpolarised, Stokes S0) channel at `centre` nm:
 /// the wavelength printed with six decimals and a comma as decimal separator, so that the
@@ -32,15 +37,15 @@ fn samples(values: Vec<f32>, half: bool) -> FlatSamples {
     }
 }
 
-/// One channel per RGB component of `rgb`, named `<prefix>R` etc.
+/// One channel per RGB component of `rgb` times `k`, named `<prefix>R` etc.
 fn rgb_channels(
     out: &mut Vec<AnyChannel<FlatSamples>>,
     prefix: &str,
-    rgb: &[[f32; 3]],
+    (rgb, k): (&[[f32; 3]], f32),
     half: bool,
 ) {
     for (c, name) in ["R", "G", "B"].iter().enumerate() {
-        let v = rgb.iter().map(|p| p[c]).collect();
+        let v = rgb.iter().map(|p| p[c] * k).collect();
         out.push(AnyChannel::new(
             Text::from(format!("{prefix}{name}").as_str()),
             samples(v, half),
@@ -79,38 +84,40 @@ pub(super) fn write(
 ) -> std::result::Result<(), String> {
     let space = opts.colour_space;
     let half = opts.half;
+    // cd/m² per unit of the film's Y: the photometric scale, and the EXR's whiteLuminance.
+    let per_y = luminance_scale(opts.observer).map_err(|e| e.to_string())? as f32;
+    let k = match opts.units {
+        Units::Radiometric => 1.0,
+        Units::Photometric => per_y,
+    };
     let mut ch = Vec::new();
-    rgb_channels(&mut ch, "", &to_rgb(img, &img.data, space, opts)?, half);
+    rgb_channels(
+        &mut ch,
+        "",
+        (&to_rgb(img, &img.data, space, opts)?, k),
+        half,
+    );
     if opts.spectral_layers {
         spectral_channels(&mut ch, "", img, &img.data, half);
     }
     for (name, data) in &img.layers {
-        rgb_channels(
-            &mut ch,
-            &format!("{name}."),
-            &to_rgb(img, data, space, opts)?,
-            half,
-        );
+        let rgb = to_rgb(img, data, space, opts)?;
+        rgb_channels(&mut ch, &format!("{name}."), (&rgb, k), half);
         if opts.spectral_layers {
             spectral_channels(&mut ch, &format!("{name}."), img, data, half);
         }
     }
     if let (true, Some(noise)) = (opts.noise_layer, &img.noise) {
-        let conv =
-            FilmToRgb::new(space, opts.observer, &img.grid, opts.cat).map_err(|e| e.to_string())?;
-        let rgb: Vec<[f32; 3]> = noise
-            .chunks_exact(img.grid.n)
-            .map(|px| conv.rgb_std_error(px))
-            .collect();
-        rgb_channels(&mut ch, "noise.", &rgb, half);
-        if opts.spectral_layers {
-            spectral_channels(&mut ch, "noise.", img, noise, half);
-        }
+        noise_channels(&mut ch, img, noise, opts, k)?;
     }
-
+    let attributes = LayerAttributes {
+        // The luminance (cd/m²) of RGB (1, 1, 1), as OpenEXR defines `whiteLuminance`.
+        white_luminance: Some(per_y / k),
+        ..LayerAttributes::default()
+    };
     let layer = Layer::new(
         (img.width, img.height),
-        LayerAttributes::default(),
+        attributes,
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(ch.into()),
     );
@@ -137,6 +144,7 @@ pub(super) fn write(
             ColourSpace::Xyz => "ciexyz",
         },
     );
+    text(UNITS_ATTRIBUTE, opts.units.name());
     if opts.spectral_layers {
         text("spectralLayoutVersion", "1.0");
         // The layout's unit for emissive data; channel values are spectral radiance, i.e. per
@@ -147,4 +155,42 @@ pub(super) fn write(
         text("brumeBinEdges", &bin_edges(img));
     }
     image.write().to_file(path).map_err(|e| e.to_string())
+}
+
+/// The standard-error layer: `noise.R/G/B` and `noise.Y` (the luminance channel's error), both
+/// computed as if the bins were independent, scaled by `k` as the image; per bin with
+/// spectral layers.
+fn noise_channels(
+    ch: &mut Vec<AnyChannel<FlatSamples>>,
+    img: &SpectralImage,
+    noise: &[f32],
+    opts: &OutputOptions,
+    k: f32,
+) -> std::result::Result<(), String> {
+    let conv = FilmToRgb::new(opts.colour_space, opts.observer, &img.grid, opts.cat)
+        .map_err(|e| e.to_string())?;
+    let rgb: Vec<[f32; 3]> = noise
+        .chunks_exact(img.grid.n)
+        .map(|px| conv.rgb_std_error(px))
+        .collect();
+    rgb_channels(ch, "noise.", (&rgb, k), opts.half);
+    let y: Vec<f32> = noise
+        .chunks_exact(img.grid.n)
+        .map(|px| {
+            let var: f64 = px
+                .iter()
+                .zip(&conv.xyz.w)
+                .map(|(e, w)| (*e as f64 * w[1]).powi(2))
+                .sum();
+            var.sqrt() as f32 * k
+        })
+        .collect();
+    ch.push(AnyChannel::new(
+        Text::from("noise.Y"),
+        samples(y, opts.half),
+    ));
+    if opts.spectral_layers {
+        spectral_channels(ch, "noise.", img, noise, opts.half);
+    }
+    Ok(())
 }

@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::colour::{Cat, ColourSpace, Observer, ViewTransform};
+use crate::film::output::{Exposure, Units};
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -16,8 +17,23 @@ pub struct FilmDesc {
     /// Chromatic adaptation to a working space whose white is not D65 (ACEScg).
     pub adaptation: Cat,
     pub view: ViewTransform,
-    /// Exposure in stops for display outputs.
-    pub exposure: f32,
+    /// Exposure of display outputs: stops, or "auto" (metered).
+    pub exposure: Exposure,
+    /// What EXR colour channels hold: "radiometric" or "photometric" (Y in cd/m²).
+    #[serde(skip_serializing_if = "is_radiometric")]
+    pub units: Units,
+    /// One EXR layer per light (`light0.spot`, ...), their sum the image.
+    #[serde(skip_serializing_if = "is_false")]
+    pub light_layers: bool,
+    /// Also write a false-colour luminance map `NAME-luminance.png` beside each image output.
+    #[serde(skip_serializing_if = "is_false")]
+    pub false_colour: bool,
+    /// The false-colour map's range in cd/m² (default: from the image's percentiles).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::scene::array::exact_opt"
+    )]
+    pub false_colour_range: Option<[f32; 2]>,
     /// Half-float EXR channels (false: 32-bit float).
     pub half: bool,
     /// Write per-bin spectral layers into EXR outputs.
@@ -38,7 +54,11 @@ impl Default for FilmDesc {
             colour_space: ColourSpace::default(),
             adaptation: Cat::default(),
             view: ViewTransform::default(),
-            exposure: 0.0,
+            exposure: Exposure::default(),
+            units: Units::default(),
+            light_layers: false,
+            false_colour: false,
+            false_colour_range: None,
             half: false,
             spectral_layers: false,
             noise_layer: false,
@@ -54,10 +74,19 @@ impl FilmDesc {
             observer: self.observer,
             view: self.view,
             exposure: self.exposure,
+            units: self.units,
             half: self.half,
             spectral_layers: self.spectral_layers,
             noise_layer: self.noise_layer,
             cat: self.adaptation,
         }
     }
+}
+
+fn is_radiometric(u: &Units) -> bool {
+    *u == Units::Radiometric
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }

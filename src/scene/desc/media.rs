@@ -22,13 +22,34 @@ pub struct MediumDesc {
     pub phase: Option<PhaseDesc>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub droplets: Option<DropletsDesc>,
+    /// Grey fog of this meteorological optical range (m): sigma_t = ln(20) / visibility in
+    /// every bin, instead of `sigma_s`/`sigma_a`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub visibility: Option<f32>,
+    /// With `visibility`: the fraction of the extinction that scatters (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub albedo: Option<f32>,
 }
 
 impl MediumDesc {
+    /// The grey fog `visibility` (and `albedo`) describe, if given.
+    pub fn grey_visibility(&self) -> Option<crate::medium::Visibility> {
+        self.visibility.map(|metres| crate::medium::Visibility {
+            metres,
+            albedo: self.albedo.unwrap_or(1.0),
+        })
+    }
+
     /// Problems on the description's face: (key relative to the medium, message).
     pub fn check(&self, exists: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
+        let keys = crate::medium::CoefficientKeys {
+            sigma_s: self.sigma_s.is_some(),
+            sigma_a: self.sigma_a != SpectrumRef::Constant(0.0),
+            visibility: self.visibility,
+            albedo: self.albedo,
+        };
         crate::medium::check_medium(
-            self.sigma_s.is_some(),
+            keys,
             self.g,
             self.phase.as_ref(),
             self.droplets.as_ref(),

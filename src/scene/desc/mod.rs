@@ -25,6 +25,9 @@ pub use super::materials::{
     BlendDesc, DielectricDesc, GlossyDesc, LambertDesc, MaterialCommon, MaterialDesc, MaterialKind,
     MirrorDesc, TextureDesc, WeightDesc,
 };
+pub use super::sensors::{
+    IlluminanceSensorDesc, LuminanceSensorDesc, SensorCommon, SensorDesc, SensorKindDesc,
+};
 pub use super::shapes::{
     BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
     TransformDesc,
@@ -47,17 +50,20 @@ pub struct SceneDesc {
     pub media: BTreeMap<String, MediumDesc>,
     pub shapes: Vec<ShapeDesc>,
     pub lights: Vec<LightDesc>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorDesc>,
     /// Name of the medium filling all space outside every shape (none = vacuum).
     pub medium: Option<String>,
 }
 
-/// Why the table of `section` (`lights`, `shapes`, `materials`) cannot be read, with the key
+/// Why the table of `section` (`lights`, `shapes`, `materials`, `sensors`) cannot be read, with the key
 /// and span inside it; None for other sections or a table that reads.
 pub(crate) fn read_kind_table(section: &str, table: Spanned<DeValue<'_>>) -> Option<Fault> {
     match section {
         "lights" => tagged::read::<LightCommon, LightKind>(table).err(),
         "shapes" => tagged::read::<ShapeCommon, ShapeKindDesc>(table).err(),
         "materials" => tagged::read::<MaterialCommon, MaterialKind>(table).err(),
+        "sensors" => tagged::read::<SensorCommon, SensorKindDesc>(table).err(),
         // The other sections are plain serde structs, placed by serde itself.
         _ => None,
     }

@@ -1,10 +1,15 @@
 //! `[[lights]]`: the keys every light shares (its spectrum) and the loops over kinds. Each
 //! kind's keys, defaults, checks and runtime [`Light`] are in its own file.
 
+mod amount;
 mod directional;
 mod laser;
 mod point;
 mod spot;
+
+use std::sync::Arc;
+
+use glam::Vec3;
 
 use serde::{Deserialize, Serialize};
 
@@ -18,7 +23,10 @@ use super::check::Checker;
 use super::error::SceneError;
 use super::spectrum_desc::SpectrumRef;
 use super::tagged::{Tagged, kinds};
+use crate::geometry::sampling::Frame;
 use crate::light::{DirectChoice, Light};
+use crate::spectrum::Spectrum;
+use amount::Amount;
 
 /// Largest total power of a light, W. The film sums pass estimates in fixed point and drops a
 /// sample beyond `film::accum::MAX_SAMPLE` (1e11 per pixel and bin): a 1e30 W lamp renders
@@ -41,10 +49,22 @@ pub struct LightCommon {
     /// How its direct light reaches the image under `integrator.direct = "nee"`.
     #[serde(default, skip_serializing_if = "is_auto")]
     pub direct: DirectChoice,
+    /// Multiplier of the light's share of forward rays (> 0; the image's expectation does not
+    /// change, only where the noise goes).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub importance: f32,
 }
 
 fn is_auto(d: &DirectChoice) -> bool {
     *d == DirectChoice::Auto
+}
+
+pub(crate) fn one() -> f32 {
+    1.0
+}
+
+pub(crate) fn is_one(v: &f32) -> bool {
+    *v == 1.0
 }
 
 kinds! {
@@ -65,6 +85,7 @@ impl LightDesc {
         if let Some(s) = &self.common.spectrum {
             c.emission_ref(&format!("{key}.spectrum"), s);
         }
+        check_importance(c, key, self.common.importance);
         match &self.kind {
             LightKind::Directional(l) => l.check(c, key),
             LightKind::Point(l) => l.check(c, key),
@@ -95,13 +116,59 @@ impl LightDesc {
             return Err(b.source.invalid(&spectrum_key, message));
         }
         let unit = shape * (1.0 / integral as f32);
-        Ok(match &self.kind {
-            LightKind::Directional(l) => l.build(unit, b.radius),
-            LightKind::Point(l) => l.build(unit),
-            LightKind::Spot(l) => l.build(unit),
-            LightKind::Laser(l) => l.build(unit),
-        })
+        match &self.kind {
+            LightKind::Directional(l) => l.build(b, key, unit),
+            LightKind::Point(l) => l.build(b, key, unit),
+            LightKind::Spot(l) => l.build(b, key, unit),
+            LightKind::Laser(l) => l.build(b, key, unit),
+        }
     }
+
+    /// The light's kind as its `type` spells it (names its light layer).
+    pub fn kind_name(&self) -> &'static str {
+        match &self.kind {
+            LightKind::Directional(_) => "directional",
+            LightKind::Point(_) => "point",
+            LightKind::Spot(_) => "spot",
+            LightKind::Laser(_) => "laser",
+        }
+    }
+}
+
+/// `importance`: a finite number > 0 (0 would leave the light's forward-ray light out of the
+/// image).
+pub(crate) fn check_importance(c: &mut Checker, key: &str, importance: f32) {
+    c.range_f32(
+        &format!("{key}.importance"),
+        importance,
+        f32::MIN_POSITIVE,
+        1e6,
+        "a number in (0, 1e6]",
+    );
+}
+
+/// A point light with the IES profile `file`, oriented by `frame`, emitting `amount` (or, when
+/// none is given, the flux of the file's own table).
+fn profiled(
+    b: &Builder,
+    key: &str,
+    file: &str,
+    position: Vec3,
+    frame: Frame,
+    amount: Option<(&'static str, Amount)>,
+    unit: Spectrum,
+) -> Result<Light, SceneError> {
+    let table = amount::load_profile(b, key, file)?;
+    // Per watt, the brightest direction gets peak / total of it per steradian.
+    let peak = table.peak() / table.total();
+    let amount = amount.unwrap_or(("profile", Amount::LuminousFlux(table.total() as f32)));
+    let w = amount::radiant(b, key, amount, &unit, peak)?;
+    Ok(Light::profiled(
+        position,
+        frame,
+        unit * w,
+        Arc::clone(&table),
+    ))
 }
 
 /// The power of a point-like light: positive and at most [`MAX_POWER`].

@@ -72,8 +72,18 @@ pub struct ShapeCommon {
     /// Emitted radiance spectrum (W / (m^2 sr nm) before `emit_scale`): makes the shape an area light.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emit: Option<SpectrumRef>,
-    #[serde(default = "one", skip_serializing_if = "is_one")]
-    pub emit_scale: f32,
+    /// Multiplier of `emit` (default 1; not with `luminous_flux`).
+    #[serde(default, skip_serializing_if = "none_or_one")]
+    pub emit_scale: Option<f32>,
+    /// Total luminous flux of the emitter, lm: `emit` then gives only the spectral shape.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub luminous_flux: Option<f32>,
+    /// Multiplier of the emitter's share of forward rays (see `[[lights]]`).
+    #[serde(
+        default = "crate::scene::lights::one",
+        skip_serializing_if = "crate::scene::lights::is_one"
+    )]
+    pub importance: f32,
     /// How the emitted light reaches the image under `integrator.direct = "nee"` (with `emit`).
     #[serde(default, skip_serializing_if = "is_auto")]
     pub direct: DirectChoice,
@@ -81,12 +91,8 @@ pub struct ShapeCommon {
     pub transform: TransformDesc,
 }
 
-fn one() -> f32 {
-    1.0
-}
-
-fn is_one(v: &f32) -> bool {
-    *v == 1.0
+fn none_or_one(v: &Option<f32>) -> bool {
+    v.is_none_or(|v| v == 1.0)
 }
 
 fn is_auto(d: &DirectChoice) -> bool {
@@ -127,13 +133,34 @@ impl ShapeDesc {
         }
         if let Some(e) = &s.emit {
             c.emission_ref(&format!("{key}.emit"), e);
-        } else if s.direct != DirectChoice::Auto {
-            c.fail(
-                format!("{key}.direct"),
-                "only an emitting shape (`emit`) has direct light",
-            );
+        } else {
+            let light_keys = [
+                ("direct", s.direct != DirectChoice::Auto),
+                ("luminous_flux", s.luminous_flux.is_some()),
+                ("importance", s.importance != 1.0),
+            ];
+            for (k, given) in light_keys {
+                if given {
+                    c.fail(
+                        format!("{key}.{k}"),
+                        format!("only an emitting shape (`emit`) has `{k}`"),
+                    );
+                }
+            }
         }
-        c.non_negative(&format!("{key}.emit_scale"), s.emit_scale as f64);
+        if let Some(v) = s.emit_scale {
+            c.non_negative(&format!("{key}.emit_scale"), v as f64);
+        }
+        if let Some(v) = s.luminous_flux {
+            c.positive(&format!("{key}.luminous_flux"), v as f64);
+            if s.emit_scale.is_some() {
+                c.fail(
+                    format!("{key}.luminous_flux"),
+                    "give one of `emit_scale`, `luminous_flux` (found both)",
+                );
+            }
+        }
+        crate::scene::lights::check_importance(c, key, s.importance);
         let t = &s.transform;
         c.vector(&format!("{key}.transform.translate"), t.translate);
         c.vector(&format!("{key}.transform.rotate"), t.rotate);
@@ -160,7 +187,11 @@ impl ShapeDesc {
         };
         let s = &self.common;
         let radiance = match &s.emit {
-            Some(e) => Some(emission(b, key, e, s.emit_scale)?),
+            // A flux-given emitter is scaled (and bounded) once its area is known.
+            Some(e) if s.luminous_flux.is_some() => {
+                Some(b.spectra.emission(e, &format!("{key}.emit"))?)
+            }
+            Some(e) => Some(emission(b, key, e, s.emit_scale.unwrap_or(1.0))?),
             None => None,
         };
         let t = &s.transform;
@@ -178,6 +209,34 @@ impl ShapeDesc {
         };
         Ok((shape, radiance))
     }
+}
+
+/// The radiance of an emitter given by its `luminous_flux`: `radiance` (the `emit` spectrum)
+/// scaled so that a Lambertian emitter of `area` m² (one side) sends out `lm` lumens.
+pub fn scale_to_flux(
+    b: &Builder,
+    key: &str,
+    radiance: Spectrum,
+    lm: f32,
+    area: f32,
+) -> Result<Spectrum, SceneError> {
+    let at = format!("{key}.luminous_flux");
+    let w = crate::colour::photometry::luminous_weights(&b.grid)
+        .map_err(|e| b.source.invalid(&at, e.to_string()))?;
+    let per_area = crate::colour::photometry::photometric(&w, radiance.as_slice(b.grid.n))
+        * std::f64::consts::PI;
+    let k = lm as f64 / (per_area * area as f64);
+    let scaled = radiance * k as f32;
+    let max = scaled.max_value();
+    if !(k.is_finite() && k > 0.0 && max.is_finite() && max <= MAX_RADIANCE) {
+        return Err(b.source.invalid(
+            &at,
+            format!(
+                "{lm} lm from {area} m² with this `emit` spectrum needs a radiance of {max:e}                  W/(m^2 sr nm), outside the (0, {MAX_RADIANCE:e}] accepted (the spectrum must                  be visible and the film's sums must not overflow)"
+            ),
+        ));
+    }
+    Ok(scaled)
 }
 
 /// Emitted radiance `emit * scale`, refused above [`MAX_RADIANCE`].
