@@ -83,7 +83,8 @@ fn reference_round_trips_exactly() {
     let back = Reference::load(&p).unwrap();
     assert_eq!(back, r);
     close(
-        r.noise_mse(),
+        r.noise_mse()
+            .expect("a rendered reference has its standard error"),
         (0..12)
             .map(|i| ((i as f32 * 0.01) as f64).powi(2))
             .sum::<f64>()

@@ -1,12 +1,12 @@
 //! The study loop: every variant, every run, passes until the time budget is spent, errors
 //! measured after each pass. Only pass rendering counts as time; measuring does not.
 
-use std::path::PathBuf;
-use std::time::Instant;
+use std::path::{Path, PathBuf};
 
 use super::StudyError;
-use super::metrics::{LayerErrors, layer_errors, mean_error, mean_noise};
-use super::reference::{Reference, layer};
+use super::clock::{Budget, Elapsed, timed};
+use super::measure::{Checkpoint, Projection, measure};
+use super::reference::Reference;
 use super::variants::Variant;
 use crate::integrator::Renderer;
 use crate::scene::{build, build_integrator, load};
@@ -17,31 +17,17 @@ pub struct StudyConfig {
     /// `--set` overrides applied to every variant (and the reference), before the variant's own.
     pub sets: Vec<String>,
     pub variants: Vec<Variant>,
-    /// Seconds of rendering per run.
-    pub seconds: f64,
+    /// How long each run renders.
+    pub budget: Budget,
     pub runs: u32,
     /// Base seed; run k of every variant uses seed + 1 + k (so variants share seeds).
     pub seed: u64,
+    /// Also fit the reference's scale to every checkpoint (`--fit-scale`).
+    pub fit_scale: bool,
 }
 
 /// Variants that could not be loaded or built: (index, message).
 pub type InvalidVariants = Vec<(usize, String)>;
-
-/// Errors after one pass of one run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct Checkpoint {
-    pub passes: u64,
-    /// Seconds spent rendering passes so far.
-    pub seconds: f64,
-    pub total: LayerErrors,
-    pub medium: LayerErrors,
-    pub surface: LayerErrors,
-    /// Mean per-pixel standard error estimated from the run's own passes.
-    pub noise: f64,
-    /// Mean signed error (image minus reference) over all values: a bias that persists
-    /// across runs shows here, where the MSE cannot tell it from noise.
-    pub mean_error: f64,
-}
 
 /// One CSV row: a variant's run at a checkpoint.
 #[derive(Clone, Debug, PartialEq)]
@@ -54,11 +40,12 @@ pub struct Row {
 /// Progress of a study, for the caller's bar.
 #[derive(Clone, Debug)]
 pub enum Event<'a> {
-    /// A pass finished: the variant, run, and seconds into this run.
+    /// A pass finished: the variant, run, time into this run and fraction of its budget spent.
     Pass {
         variant: &'a Variant,
         run: u32,
-        seconds: f64,
+        elapsed: Elapsed,
+        fraction: f64,
     },
     /// A run finished; its final image (for side-by-side pictures at equal time).
     RunDone {
@@ -73,29 +60,52 @@ pub enum Event<'a> {
     },
 }
 
-/// Renders `sets` for `seconds` (at least one pass) with `seed`, calling `each` after every pass
-/// with the renderer and the rendering time so far.
+/// Renders `sets` until `budget` is spent (at least one pass) with `seed`, calling `each` after
+/// every pass with the renderer and the rendering time so far.
 pub fn render_for(
-    scene_file: &std::path::Path,
+    scene_file: &Path,
     sets: &[String],
-    seconds: f64,
+    budget: Budget,
     seed: u64,
-    mut each: impl FnMut(&Renderer, f64),
+    mut each: impl FnMut(&Renderer, Elapsed),
 ) -> Result<(), StudyError> {
     let loaded = load(scene_file, sets)?;
     let scene = build(&loaded)?;
     let integrator = build_integrator(&loaded, &scene)?;
     let mut r = Renderer::new(&scene, integrator, seed);
-    let mut spent = 0.0;
+    let mut spent = Elapsed::default();
     loop {
-        let t0 = Instant::now();
-        r.render_pass();
-        spent += t0.elapsed().as_secs_f64();
+        let pass = timed(|| r.render_pass());
+        spent.wall += pass.wall;
+        spent.cpu += pass.cpu;
         each(&r, spent);
-        if spent >= seconds {
+        if budget.spent(spent) {
             return Ok(());
         }
     }
+}
+
+/// Loads and builds a variant as a run would (so that any value the scene refuses, such as an
+/// unknown `integrator.q`, is caught once, before rendering) and prepares the comparison of its
+/// images with the reference. The outer error is a variant the scene refuses; the inner one a
+/// variant that cannot be compared with the reference at all.
+fn prepare(
+    scene_file: &Path,
+    sets: &[String],
+    reference: &Reference,
+) -> Result<Result<Projection, StudyError>, String> {
+    let loaded = load(scene_file, sets).map_err(|e| e.to_string())?;
+    let scene = build(&loaded).map_err(|e| e.to_string())?;
+    build_integrator(&loaded, &scene).map_err(|e| e.to_string())?;
+    let (w, h) = scene.camera.resolution();
+    if w as usize != reference.width || h as usize != reference.height {
+        return Ok(Err(StudyError::Mismatch {
+            got: reference.shape(),
+            want: format!("{w} x {h}"),
+        }));
+    }
+    let opts = loaded.desc.film.output_options();
+    Ok(Projection::new(&reference.values, &scene.grid, &opts))
 }
 
 /// Runs the study against `reference`; variants that fail to load or build are reported through
@@ -105,18 +115,15 @@ pub fn run_study(
     reference: &Reference,
     mut progress: impl FnMut(Event),
 ) -> Result<(Vec<Row>, InvalidVariants), StudyError> {
+    cfg.budget.check()?;
     let mut rows = Vec::new();
     let mut invalid = Vec::new();
     for (vi, variant) in cfg.variants.iter().enumerate() {
         let mut sets = cfg.sets.clone();
         sets.extend(variant.sets.iter().cloned());
-        // Validate up front so a bad combination is reported once, not per run.
-        let checked =
-            load(&cfg.scene, &sets).and_then(|l| build(&l).map(|s| s.camera.resolution()));
-        let (w, h) = match checked {
-            Ok(r) => r,
-            Err(e) => {
-                let message = e.to_string();
+        let projection = match prepare(&cfg.scene, &sets, reference) {
+            Ok(p) => p?,
+            Err(message) => {
                 progress(Event::Invalid {
                     variant,
                     message: message.clone(),
@@ -125,46 +132,43 @@ pub fn run_study(
                 continue;
             }
         };
-        let want = format!("{} x {}", w, h);
-        if w as usize != reference.width || h as usize != reference.height {
-            return Err(StudyError::Mismatch {
-                got: reference.shape(),
-                want,
-            });
-        }
         for run in 0..cfg.runs {
             let mut failed = None;
-            render_for(
-                &cfg.scene,
-                &sets,
-                cfg.seconds,
-                cfg.seed.wrapping_add(1 + run as u64),
-                |r, seconds| {
-                    if failed.is_some() {
-                        return;
-                    }
-                    match measure(r, seconds, reference) {
-                        Ok(c) => rows.push(Row {
-                            variant: vi,
-                            run,
-                            checkpoint: c,
-                        }),
-                        Err(e) => failed = Some(e),
-                    }
-                    progress(Event::Pass {
+            let seed = cfg.seed.wrapping_add(1 + run as u64);
+            render_for(&cfg.scene, &sets, cfg.budget, seed, |r, elapsed| {
+                if failed.is_some() {
+                    return;
+                }
+                let img = r.image();
+                match measure(
+                    &img,
+                    r.film().passes,
+                    elapsed,
+                    reference,
+                    &projection,
+                    cfg.fit_scale,
+                ) {
+                    Ok(checkpoint) => rows.push(Row {
+                        variant: vi,
+                        run,
+                        checkpoint,
+                    }),
+                    Err(e) => failed = Some(e),
+                }
+                progress(Event::Pass {
+                    variant,
+                    run,
+                    elapsed,
+                    fraction: cfg.budget.fraction(elapsed),
+                });
+                if cfg.budget.spent(elapsed) {
+                    progress(Event::RunDone {
                         variant,
                         run,
-                        seconds,
+                        image: &img,
                     });
-                    if seconds >= cfg.seconds {
-                        progress(Event::RunDone {
-                            variant,
-                            run,
-                            image: &r.image(),
-                        });
-                    }
-                },
-            )?;
+                }
+            })?;
             if let Some(e) = failed {
                 return Err(e);
             }
@@ -177,53 +181,22 @@ pub fn run_study(
     Ok((rows, invalid))
 }
 
-fn measure(r: &Renderer, seconds: f64, reference: &Reference) -> Result<Checkpoint, StudyError> {
-    let img = r.image();
-    if img.data.len() != reference.total.len() {
-        return Err(StudyError::Mismatch {
-            got: reference.shape(),
-            want: format!("{} x {} x {} bins", img.width, img.height, img.grid.n),
-        });
-    }
-    let zeros;
-    let (m, s) = match (layer(&img, "medium"), layer(&img, "surface")) {
-        (Some(m), Some(s)) => (m, s),
-        _ => {
-            zeros = vec![0.0; img.data.len()];
-            (zeros.as_slice(), zeros.as_slice())
-        }
-    };
-    Ok(Checkpoint {
-        passes: r.film().passes,
-        seconds,
-        total: layer_errors(&img.data, &reference.total),
-        medium: layer_errors(m, &reference.medium),
-        surface: layer_errors(s, &reference.surface),
-        noise: mean_noise(&img),
-        mean_error: mean_error(&img.data, &reference.total),
-    })
-}
-
-/// Renders the reference: `sets` for `seconds` with a seed no study run uses.
+/// Renders the reference: `sets` for `seconds` of wall-clock time with a seed no study run uses.
 pub fn render_reference(
-    scene_file: &std::path::Path,
+    scene_file: &Path,
     sets: &[String],
     seconds: f64,
     seed: u64,
     mut progress: impl FnMut(f64),
 ) -> Result<Reference, StudyError> {
+    let budget = Budget::wall(seconds);
+    budget.check()?;
     let mut out = None;
-    render_for(
-        scene_file,
-        sets,
-        seconds,
-        seed ^ 0x005E_ED0F_BEEF,
-        |r, t| {
-            progress(t);
-            if t >= seconds {
-                out = Some(Reference::from_image(&r.image(), r.film().passes, t));
-            }
-        },
-    )?;
+    render_for(scene_file, sets, budget, seed ^ 0x005E_ED0F_BEEF, |r, t| {
+        progress(t.wall);
+        if budget.spent(t) {
+            out = Some(Reference::from_image(&r.image(), r.film().passes, t.wall));
+        }
+    })?;
     out.ok_or_else(|| StudyError::NoVariant("reference rendered no pass".into()))
 }

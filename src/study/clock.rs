@@ -1,0 +1,188 @@
+//! The study's time budgets: wall-clock seconds (`--time`) and process CPU seconds
+//! (`--cpu-time`), and the clock efficiencies are measured on.
+//!
+//! CPU time is the user plus system time of the whole process (every thread: the rayon workers
+//! that render, and their brief spinning between jobs) as `getrusage(RUSAGE_SELF)` reports it,
+//! counted only while passes render. On a loaded machine it is steadier than wall time: waiting
+//! for a core is not counted, though cache and memory contention still are.
+
+use serde::Serialize;
+
+use super::StudyError;
+
+/// Which clock a study's efficiencies (1 / (MSE x t)) use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Clock {
+    /// Wall-clock seconds of pass rendering.
+    Wall,
+    /// Process CPU seconds (user + system, all threads) of pass rendering.
+    Cpu,
+}
+
+impl Clock {
+    pub fn name(self) -> &'static str {
+        match self {
+            Clock::Wall => "wall-clock seconds",
+            Clock::Cpu => "CPU seconds",
+        }
+    }
+}
+
+/// Time spent rendering passes so far, on both clocks (`cpu` is NaN where the platform has no
+/// process CPU clock).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Elapsed {
+    pub wall: f64,
+    pub cpu: f64,
+}
+
+impl Elapsed {
+    pub fn on(&self, clock: Clock) -> f64 {
+        match clock {
+            Clock::Wall => self.wall,
+            Clock::Cpu => self.cpu,
+        }
+    }
+}
+
+/// How long each run renders: until any of the given budgets is spent (at least one pass).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Budget {
+    /// Wall-clock seconds per run.
+    pub wall: Option<f64>,
+    /// Process CPU seconds per run.
+    pub cpu: Option<f64>,
+}
+
+impl Budget {
+    pub fn wall(seconds: f64) -> Self {
+        Self {
+            wall: Some(seconds),
+            cpu: None,
+        }
+    }
+
+    pub fn cpu(seconds: f64) -> Self {
+        Self {
+            wall: None,
+            cpu: Some(seconds),
+        }
+    }
+
+    /// The clock efficiencies are measured on: CPU time when a CPU budget is set.
+    pub fn clock(&self) -> Clock {
+        match self.cpu {
+            Some(_) => Clock::Cpu,
+            None => Clock::Wall,
+        }
+    }
+
+    /// Refuses budgets that are not positive numbers, and a CPU budget where the process CPU
+    /// clock cannot be read.
+    pub fn check(&self) -> Result<(), StudyError> {
+        let bad = |flag: &str, v: f64| {
+            (!(v.is_finite() && v > 0.0))
+                .then(|| StudyError::Budget(format!("{flag} {v}: expected a positive number")))
+        };
+        if let Some(e) = self.wall.and_then(|v| bad("--time", v)) {
+            return Err(e);
+        }
+        if let Some(e) = self.cpu.and_then(|v| bad("--cpu-time", v)) {
+            return Err(e);
+        }
+        if self.cpu.is_some() && process_cpu_seconds().is_none() {
+            return Err(StudyError::Budget(
+                "--cpu-time: this platform has no process CPU clock (getrusage)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Whether a run that has rendered for `e` is done.
+    pub fn spent(&self, e: Elapsed) -> bool {
+        let wall = self.wall.is_some_and(|w| e.wall >= w);
+        let cpu = self.cpu.is_some_and(|c| e.cpu >= c);
+        wall || cpu || (self.wall.is_none() && self.cpu.is_none())
+    }
+
+    /// Fraction of the budget spent (the larger of the two), in [0, 1].
+    pub fn fraction(&self, e: Elapsed) -> f64 {
+        let f = |b: Option<f64>, t: f64| b.map_or(0.0, |b| if t.is_finite() { t / b } else { 0.0 });
+        f(self.wall, e.wall).max(f(self.cpu, e.cpu)).clamp(0.0, 1.0)
+    }
+}
+
+/// User plus system CPU seconds of this process so far (all threads); None where unavailable.
+#[cfg(unix)]
+pub fn process_cpu_seconds() -> Option<f64> {
+    use nix::sys::resource::{UsageWho, getrusage};
+    use nix::sys::time::TimeValLike;
+    let u = getrusage(UsageWho::RUSAGE_SELF).ok()?;
+    let micros = u.user_time().num_microseconds() + u.system_time().num_microseconds();
+    Some(micros as f64 * 1e-6)
+}
+
+/// User plus system CPU seconds of this process so far (all threads); None where unavailable.
+#[cfg(not(unix))]
+pub fn process_cpu_seconds() -> Option<f64> {
+    None
+}
+
+/// Measures the time of one piece of work on both clocks.
+pub(crate) fn timed(work: impl FnOnce()) -> Elapsed {
+    let cpu0 = process_cpu_seconds();
+    let t0 = std::time::Instant::now();
+    work();
+    let wall = t0.elapsed().as_secs_f64();
+    let cpu = match (cpu0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => (b - a).max(0.0),
+        _ => f64::NAN,
+    };
+    Elapsed { wall, cpu }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timed_counts_cpu_seconds_of_busy_work() {
+        let Some(start) = process_cpu_seconds() else {
+            return; // no CPU clock on this platform: nothing to measure
+        };
+        // Other tests of this binary run in parallel threads and add to the process's CPU
+        // time, so only the lower bound is checked here (the CLI test checks the upper one in
+        // a process of its own).
+        let mut x = 0u64;
+        let busy = timed(|| {
+            while process_cpu_seconds().is_some_and(|t| t < start + 0.05) {
+                x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(1));
+            }
+        });
+        assert!(busy.cpu >= 0.05 && busy.cpu < 60.0, "{busy:?}");
+        assert!(busy.wall > 0.0);
+    }
+
+    #[test]
+    fn budgets_stop_at_the_first_spent_and_report_fractions() {
+        let both = Budget {
+            wall: Some(10.0),
+            cpu: Some(2.0),
+        };
+        assert_eq!(both.clock(), Clock::Cpu);
+        assert_eq!(Budget::wall(1.0).clock(), Clock::Wall);
+        let e = |wall, cpu| Elapsed { wall, cpu };
+        assert!(!both.spent(e(1.0, 1.0)));
+        assert!(both.spent(e(1.0, 2.0)));
+        assert!(both.spent(e(10.0, 0.5)));
+        assert!(!Budget::wall(1.0).spent(e(0.5, 100.0)));
+        assert!(Budget::cpu(1.0).spent(e(0.1, 1.0)));
+        assert_eq!(both.fraction(e(5.0, 0.5)), 0.5);
+        assert_eq!(both.fraction(e(50.0, 0.5)), 1.0);
+        assert_eq!(Budget::wall(2.0).fraction(e(1.0, f64::NAN)), 0.5);
+        assert!(Budget::wall(-1.0).check().is_err());
+        assert!(Budget::cpu(f64::NAN).check().is_err());
+        assert!(Budget::wall(0.5).check().is_ok());
+    }
+}
