@@ -78,7 +78,8 @@ fn media() -> Vec<HomogeneousMedium> {
 
 fn build(n: usize, r: Records) -> Gather {
     // q does not matter here: the records are given; spheres bound them.
-    let spheres = Estimator::from_desc(&IntegratorDesc::default(), &media()).expect("spheres");
+    let spheres =
+        Estimator::from_desc(&IntegratorDesc::default(), &[1.0], &media()).expect("spheres");
     Gather::new(
         &spheres,
         radius(n),

@@ -133,7 +133,7 @@ fn estimator_bounds_contain_their_volumes() {
         VolumeKind::CylinderLong,
     ] {
         desc.volume = kind;
-        let e = Estimator::from_desc(&desc, std::slice::from_ref(&medium)).unwrap();
+        let e = Estimator::from_desc(&desc, &[1.0], std::slice::from_ref(&medium)).unwrap();
         for _ in 0..200 {
             let a = rand_point(&mut rng, 1.0);
             let u = rand_unit(&mut rng);

@@ -44,7 +44,7 @@ fn assert_at(e: &SceneError, line: usize, key: &str) {
 fn the_good_scene_loads() {
     let s = load_str(GOOD, Path::new("scenes/test.toml"), &[]).expect("good scene");
     assert_eq!(s.desc.camera.width, 64);
-    assert_eq!(s.desc.integrator.q, 0.5);
+    assert_eq!(s.desc.integrator.q.value(), Some(0.5));
     assert_eq!(s.desc.film.bins, 32, "default bins");
 }
 
@@ -112,7 +112,7 @@ fn set_overrides_and_validates() {
         ],
     )
     .expect("valid overrides");
-    assert_eq!(s.desc.integrator.q, 0.1);
+    assert_eq!(s.desc.integrator.q.value(), Some(0.1));
     assert_eq!(s.desc.camera.width, 32);
     assert_eq!(
         s.desc.integrator.volume,
@@ -290,8 +290,8 @@ fn kind_table_errors_keep_their_exact_positions() {
         (
             "angle = 30\n",
             "",
-            "16:1: key `lights.0`",
-            "missing field `angle`",
+            "16:1: key `lights.0.angle`",
+            "a spot needs its cone's half-angle `angle` (or a `profile`)",
         ),
         (
             "albedo = 0.4",
@@ -335,8 +335,24 @@ fn kind_table_errors_keep_their_exact_positions() {
 fn keys_of_another_kind_are_refused() {
     let e = kinds_error("type = \"spot\"", "type = \"point\"", &[]);
     assert!(
-        e.starts_with("scenes/test.toml:19:1: key `lights.0.direction`: unknown field `direction` for a point light"),
+        e.starts_with(
+            "scenes/test.toml:20:1: key `lights.0.angle`: unknown field `angle` for a point light"
+        ),
         "{e}"
+    );
+    // A point light's `direction` orients a profile; without one it is refused, not ignored.
+    let e2 = fails(
+        &KINDS
+            .replacen("type = \"spot\"", "type = \"point\"", 1)
+            .replacen("angle = 30\n", "", 1),
+        &[],
+    )
+    .to_string();
+    assert!(
+        e2.starts_with(
+            "scenes/test.toml:19:1: key `lights.0.direction`: orients a photometric profile"
+        ),
+        "{e2}"
     );
     let e = kinds_error("size = [1, 1]", "radius = 1", &[]);
     assert!(

@@ -138,8 +138,8 @@ pub fn spectrum_colour(req: &SpectrumRequest) -> Result<SpectrumColour, ColourEr
         luminous_efficacy: match req.illuminant {
             Some(_) => None,
             None => {
-                let w = super::photometry::luminous_weights(&grid)?;
-                super::photometry::luminous_efficacy(&w, s.as_slice(grid.n), &grid)
+                let w = super::photometry::luminous_weights(grid)?;
+                super::photometry::luminous_efficacy(&w, s.as_slice(grid.n), grid)
             }
         },
     })

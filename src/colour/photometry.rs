@@ -111,7 +111,7 @@ pub fn transmission_distance(w: &[f64], sigma: &[f32], fraction: f64) -> Option<
     let floor: f64 = w
         .iter()
         .zip(sigma)
-        .filter(|(_, s)| !(**s > 0.0))
+        .filter(|(_, s)| s.partial_cmp(&&0.0) != Some(std::cmp::Ordering::Greater))
         .map(|(w, _)| w)
         .sum::<f64>()
         / total;

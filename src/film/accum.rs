@@ -12,19 +12,9 @@ use rayon::prelude::*;
 
 use crate::spectrum::SpectralGrid;
 
+use super::layer::LAYERS;
 use super::sensor::{self, FilmExtras, SensorKind, SensorReading};
 use super::{PassBuffer, SpectralImage};
-
-/// The components a pass estimate is split into (the paper compares them separately).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Layer {
-    /// The medium's own luminance (gathered by integration volumes).
-    Medium = 0,
-    /// Surfaces (and emitters) seen directly or through the medium.
-    Surface = 1,
-}
-
-pub const LAYERS: usize = 2;
 
 /// Fixed-point scale of the radiance sums: 2^64 units per radiance unit (resolution 5e-20,
 /// finer than the f32 pass estimates near any visible value).
@@ -34,14 +24,6 @@ pub const SQ_SCALE: f64 = 281_474_976_710_656.0;
 /// Largest pass estimate accepted; larger (or non-finite) samples are dropped and counted.
 /// Keeps one sample's square inside the `i128` range at `SQ_SCALE`.
 pub const MAX_SAMPLE: f64 = 1.0e11;
-
-/// Whether every bin of the sample `w * f * scale` is finite (branch-free over the bins).
-#[inline]
-pub(super) fn products_finite(w: &[f32], f: &[f32], scale: f32) -> bool {
-    w.iter()
-        .zip(f)
-        .fold(true, |ok, (w, f)| ok & (w * f * scale).is_finite())
-}
 
 /// The film: pass estimates of a contiguous range of passes `first .. first + passes`, summed,
 /// with per-pixel statistics across passes.
@@ -346,6 +328,7 @@ fn to_fixed(v: f64, scale: f64) -> i128 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::film::Layer;
 
     fn grid() -> SpectralGrid {
         SpectralGrid::new(2, 400.0, 700.0)

@@ -264,14 +264,9 @@ fn open(path: &Path) -> Result<Source<'_>, FilmFileError> {
     })
 }
 
-fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
+/// The magic and the format version, refused unless this brume reads it.
+fn read_version(src: &mut Source) -> Result<u32, FilmFileError> {
     let path = src.path;
-    let file_bytes = src
-        .inner
-        .get_ref()
-        .metadata()
-        .map_err(|e| src.fail(e))?
-        .len();
     let head: [u8; 12] = src.bytes().map_err(|_| FilmFileError::Magic {
         path: path.to_path_buf(),
     })?;
@@ -285,6 +280,18 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         let path = path.to_path_buf();
         return Err(FilmFileError::Version { path, found });
     }
+    Ok(found)
+}
+
+fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
+    let path = src.path;
+    let file_bytes = src
+        .inner
+        .get_ref()
+        .metadata()
+        .map_err(|e| src.fail(e))?
+        .len();
+    let found = read_version(src)?;
     let [seed, scene_hash, first, passes, dropped] = [(); 5].map(|()| src.u64());
     let [width, height, n] = [(); 3].map(|()| src.u32());
     let (lambda_min, lambda_max) = (src.u64()?, src.u64()?);
@@ -316,23 +323,9 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
     }
     let mut identity = vec![0u8; identity_len as usize];
     src.fill(&mut identity)?;
+    let at = FIXED_HEADER + line_bytes + identity_len as u64;
     let (lights, sensors, extras) = if found >= 3 {
-        let [lights, sensors, len] = [(); 3].map(|()| src.u32());
-        let (lights, sensors, len) = (lights?, sensors?, len?);
-        if lights > MAX_EXTRAS || sensors > MAX_EXTRAS || len > MAX_IDENTITY {
-            return Err(damaged(path, "absurd extras"));
-        }
-        let layer_values = lights as u64 * values;
-        if layer_values > MAX_VALUES {
-            return Err(damaged(path, "absurd film size"));
-        }
-        let at = FIXED_HEADER + line_bytes + identity_len as u64 + 12;
-        if at + len as u64 > file_bytes {
-            return Err(damaged(path, "file size does not match the header"));
-        }
-        let mut extras = vec![0u8; len as usize];
-        src.fill(&mut extras)?;
-        (lights as usize, sensors as usize, extras)
+        read_extras(src, values, at, file_bytes)?
     } else {
         (0, 0, Vec::new())
     };
@@ -362,6 +355,32 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         values: values as usize,
         file_bytes,
     })
+}
+
+/// A version 3 file's extras: the light layer and sensor counts and the extras' JSON, which
+/// starts at byte `at` of a file of `file_bytes` bytes whose image has `values` values.
+fn read_extras(
+    src: &mut Source,
+    values: u64,
+    at: u64,
+    file_bytes: u64,
+) -> Result<(usize, usize, Vec<u8>), FilmFileError> {
+    let path = src.path;
+    let [lights, sensors, len] = [(); 3].map(|()| src.u32());
+    let (lights, sensors, len) = (lights?, sensors?, len?);
+    if lights > MAX_EXTRAS || sensors > MAX_EXTRAS || len > MAX_IDENTITY {
+        return Err(damaged(path, "absurd extras"));
+    }
+    let layer_values = lights as u64 * values;
+    if layer_values > MAX_VALUES {
+        return Err(damaged(path, "absurd film size"));
+    }
+    if at + 12 + len as u64 > file_bytes {
+        return Err(damaged(path, "file size does not match the header"));
+    }
+    let mut extras = vec![0u8; len as usize];
+    src.fill(&mut extras)?;
+    Ok((lights as usize, sensors as usize, extras))
 }
 
 /// A version 3 header's equal-bin count and lines (at most `MAX_BINS` of them, maybe none).
@@ -467,96 +486,5 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::film::PassBuffer;
-
-    fn sample() -> FilmFile {
-        sample_on(SpectralGrid::new(3, 380.0, 730.0))
-    }
-
-    fn sample_on(grid: SpectralGrid) -> FilmFile {
-        let n = grid.n;
-        let mut film = Film::starting_at(2, 2, grid, 7);
-        let mut b = PassBuffer::new(4, n);
-        b.data
-            .iter_mut()
-            .enumerate()
-            .for_each(|(i, v)| *v = i as f32 * 0.37 - 3.0);
-        film.add_pass(&b);
-        film.add_pass(&b);
-        film.dropped = 5;
-        let sampling = Sampling {
-            gather_budget: 1 << 30,
-            machine_memory: 1 << 34,
-            version: "0.1.0".into(),
-        };
-        let id = FilmId::new(&serde_json::json!({"x": 1}), 42, sampling).unwrap();
-        FilmFile { film, id }
-    }
-
-    #[test]
-    fn round_trip_is_exact() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("a.brume");
-        let f = sample();
-        write(&p, &f.film, &f.id).unwrap();
-        assert_eq!(read(&p).unwrap(), f);
-        let h = read_header(&p).unwrap();
-        assert_eq!((h.first, h.end(), h.dropped), (7, 9, 5));
-        assert_eq!(h.id, f.id);
-        assert_eq!(h.file_bytes, std::fs::metadata(&p).unwrap().len());
-    }
-
-    #[test]
-    fn a_grid_with_lines_round_trips() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("a.brume");
-        let grid = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0, 633.0]).unwrap();
-        let f = sample_on(grid);
-        write(&p, &f.film, &f.id).unwrap();
-        let back = read(&p).unwrap();
-        assert_eq!(back, f);
-        assert_eq!(back.film.grid.lines(), [532.0, 633.0]);
-        let version =
-            |p: &Path| u32::from_le_bytes(std::fs::read(p).unwrap()[8..12].try_into().unwrap());
-        assert_eq!(version(&p), VERSION);
-    }
-
-    #[test]
-    fn damaged_files_are_refused_not_panicked_on() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("a.brume");
-        let lines = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0]).unwrap();
-        for f in [sample(), sample_on(lines)] {
-            write(&p, &f.film, &f.id).unwrap();
-            let good = std::fs::read(&p).unwrap();
-            // Every truncation and a flipped byte at every position is an error, never a panic.
-            for cut in 0..good.len() {
-                std::fs::write(&p, &good[..cut]).unwrap();
-                assert!(read(&p).is_err(), "truncated at {cut}");
-            }
-            for i in 0..good.len() {
-                let mut bad = good.clone();
-                bad[i] ^= 0x10;
-                std::fs::write(&p, &bad).unwrap();
-                assert!(read(&p).is_err(), "flipped byte {i}");
-            }
-        }
-    }
-
-    #[test]
-    fn a_header_announcing_a_huge_film_is_refused_before_allocating() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("a.brume");
-        let f = sample();
-        write(&p, &f.film, &f.id).unwrap();
-        let mut bytes = std::fs::read(&p).unwrap();
-        // width = height = 2^31: 2^62 pixels.
-        let at = 8 + 4 + 5 * 8;
-        bytes[at..at + 8].copy_from_slice(&[0, 0, 0, 0x80, 0, 0, 0, 0x80]);
-        std::fs::write(&p, &bytes).unwrap();
-        let err = read(&p).unwrap_err().to_string();
-        assert!(err.contains("absurd film size"), "{err}");
-    }
-}
+#[path = "checkpoint_tests.rs"]
+mod tests;

@@ -8,7 +8,7 @@
 //! only on the chunk boundaries, never on which thread traced which chunk.
 
 use super::PassBuffer;
-use super::accum::{LAYERS, Layer, products_finite};
+use super::layer::{LAYERS, Layer, products_finite};
 
 pub struct ChunkSplats {
     pixels: usize,
@@ -33,8 +33,12 @@ impl ChunkSplats {
         Self::with_extras(pixels, n, 0, 0)
     }
 
-    /// A log for a pass with `lights` light layers and `sensors` sensors (see
-    /// `PassBuffer::chunk`).
+    /// An empty log of the shape of `buf`, for a chunk of forward rays.
+    pub fn for_buffer(buf: &PassBuffer) -> Self {
+        Self::with_extras(buf.pixels, buf.n, buf.lights, buf.sensors)
+    }
+
+    /// A log for a pass with `lights` light layers and `sensors` sensors.
     pub fn with_extras(pixels: usize, n: usize, lights: usize, sensors: usize) -> Self {
         Self {
             pixels,

@@ -45,7 +45,7 @@ fn hash(k: u64) -> f32 {
 /// unattributed one, and the illuminance sensor's value.
 fn pass(film: &Film, p: u64) -> PassBuffer {
     let mut buf = film.pass_buffer();
-    let mut chunk = buf.chunk();
+    let mut chunk = super::ChunkSplats::for_buffer(&buf);
     let n = film.grid.n;
     for k in 0..40u64 {
         let s = p * 1000 + k;

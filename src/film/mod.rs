@@ -9,14 +9,16 @@ mod chunk;
 mod extras_tests;
 mod identity;
 mod image;
+mod layer;
 pub mod output;
 mod pass;
 mod sensor;
 
-pub use accum::{Film, LAYERS, Layer, MAX_SAMPLE, MergeError};
+pub use accum::{Film, MAX_SAMPLE, MergeError};
 pub use checkpoint::{FilmFile, FilmFileError, FilmHeader};
 pub use chunk::ChunkSplats;
 pub use identity::{Difference, FilmId, IdentityError, Mismatch, PER_RUN_KEYS, Sampling};
 pub use image::SpectralImage;
+pub use layer::{LAYERS, Layer};
 pub use pass::PassBuffer;
 pub use sensor::{FilmExtras, Sensor, SensorKind, SensorReading};

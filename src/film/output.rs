@@ -5,6 +5,7 @@
 
 mod exposure;
 mod exr;
+mod exr_header;
 pub mod false_colour;
 mod png;
 pub mod probe;

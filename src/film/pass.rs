@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::accum::{LAYERS, Layer, products_finite};
+use super::layer::{LAYERS, Layer, products_finite};
 
 /// One pass's estimate per layer, pixel and bin, in radiance units.
 #[derive(Clone, Debug)]
@@ -43,11 +43,6 @@ impl PassBuffer {
             sensor_data: vec![0.0; sensors * n],
             dropped: 0,
         }
-    }
-
-    /// An empty splat log of the same shape, for a chunk of forward rays.
-    pub fn chunk(&self) -> super::ChunkSplats {
-        super::ChunkSplats::with_extras(self.pixels, self.n, self.lights, self.sensors)
     }
 
     /// Adds the sample `w * f * scale` (per bin) to a pixel, unless some bin of it is not

@@ -83,7 +83,7 @@ fn trace_row(scene: &Scene, integrator: &Integrator, job: &CameraJob, y: u32) ->
     for x in 0..w {
         let pixel = y * w + x;
         let mut nee = NeeSums::default();
-        for _ in 0..integrator.settings.camera_samples {
+        for _ in 0..integrator.camera_samples {
             let px = x as f32 + rng.random::<f32>();
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);
@@ -216,6 +216,7 @@ impl<'a> CameraPath<'a> {
         };
         let cam = CameraSegment {
             medium: &self.scene.media[m as usize],
+            medium_id: m,
             dir: ray.d,
             radius: self.radius,
             mix,

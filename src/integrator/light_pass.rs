@@ -57,7 +57,7 @@ pub fn light_pass(
     buf: &mut PassBuffer,
     stop: &AtomicBool,
 ) -> bool {
-    let total = integrator.settings.forward_rays;
+    let total = integrator.forward_rays;
     let chunk = chunk_size(total);
     let workers = rayon::current_num_threads().max(1) as u64;
     let (pixels, n) = (buf.pixels, buf.n);

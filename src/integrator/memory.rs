@@ -25,13 +25,19 @@ impl MemoryEstimate {
     /// An upper estimate: every camera path reaches a medium segment thick enough to hold its
     /// full expected 1/q spheres (method note 2); surfaces add one sphere per path; no two
     /// paths share a throughput (the worst case). `pixels` of `bins` spectral bins; `media`:
-    /// whether the scene has any.
+    /// whether the scene has any. `"auto"` budgets count at their starting values, and an
+    /// automatic q at the smallest it may choose.
     pub fn new(settings: &IntegratorDesc, pixels: u64, bins: usize, media: bool) -> Self {
         let pixels = pixels as f64;
-        let paths = pixels * settings.camera_samples as f64;
+        let spp = settings
+            .camera_samples
+            .value()
+            .unwrap_or(super::defaults::CAMERA_SAMPLES);
+        let paths = pixels * spp as f64;
+        let q = settings.q.value().unwrap_or(super::auto::Q_MIN);
         let per_path = if media {
             match settings.volume {
-                VolumeKind::Spheres => 1.0 + 1.0 / settings.q as f64,
+                VolumeKind::Spheres => 1.0 + 1.0 / q as f64,
                 VolumeKind::Cylinder | VolumeKind::CylinderTruncated | VolumeKind::CylinderLong => {
                     2.0
                 }

@@ -5,6 +5,7 @@
 //! direct light ([`Direct`]) and the radius schedule.
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
+mod auto;
 mod camera_pass;
 pub mod direct;
 pub mod estimator;
@@ -15,9 +16,10 @@ mod memory;
 mod oct;
 mod pass;
 mod path;
-mod radius;
+pub mod radius;
 pub mod record;
 mod rng;
+pub mod setting;
 pub mod settings;
 mod throughput;
 
@@ -31,7 +33,18 @@ pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc,
 use crate::medium::MediumError;
 use crate::world::Scene;
 
-/// How a scene is rendered: built once from its settings, then read by every pass.
+/// The values `"auto"` settings take before anything is measured (and while they are).
+pub mod defaults {
+    /// Forward rays per pass.
+    pub const FORWARD_RAYS: u64 = 200_000;
+    /// Camera samples per pixel per pass.
+    pub const CAMERA_SAMPLES: u32 = 1;
+    /// The multiple-spheres control parameter.
+    pub const Q: f32 = 1.0;
+}
+
+/// How a scene is rendered: built once from its settings, then read by every pass. Settings
+/// given as `"auto"` hold their resolved values here (`q` per medium).
 #[derive(Clone, Debug)]
 pub struct Integrator {
     pub settings: IntegratorDesc,
@@ -39,19 +52,34 @@ pub struct Integrator {
     /// Next-event estimation of direct light, when any light is handled by it.
     pub direct: Option<Direct>,
     pub radius: RadiusSchedule,
+    pub forward_rays: u64,
+    pub camera_samples: u32,
+    /// The multiple-spheres q of each medium.
+    pub q: Vec<f32>,
 }
 
 impl Integrator {
     /// The integrator the (validated) settings describe, for `scene`.
     pub fn from_desc(desc: &IntegratorDesc, scene: &Scene) -> Result<Self, MediumError> {
+        let q = vec![desc.q.value().unwrap_or(defaults::Q); scene.media.len()];
+        let r0 = match desc.radius.value() {
+            Some(r) => r,
+            None => radius::auto_radius(&scene.camera, &scene.geometry),
+        };
         Ok(Self {
             settings: desc.clone(),
-            estimator: Estimator::from_desc(desc, &scene.media)?,
+            estimator: Estimator::from_desc(desc, &q, &scene.media)?,
             direct: Direct::from_desc(desc, scene),
             radius: RadiusSchedule {
-                r0: desc.radius,
+                r0,
                 alpha: desc.alpha,
             },
+            forward_rays: desc.forward_rays.value().unwrap_or(defaults::FORWARD_RAYS),
+            camera_samples: desc
+                .camera_samples
+                .value()
+                .unwrap_or(defaults::CAMERA_SAMPLES),
+            q,
         })
     }
 }

@@ -126,10 +126,9 @@ impl<'a> Renderer<'a> {
         self.radius = integrator.radius.at(pass);
         let (w, h) = scene.camera.resolution();
         let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
-        let settings = &integrator.settings;
-        let spp = settings.camera_samples as f32;
-        let norm = 1.0 / (settings.forward_rays as f32 * spp);
-        let budget = settings.gather_budget();
+        let spp = integrator.camera_samples as f32;
+        let norm = 1.0 / (integrator.forward_rays as f32 * spp);
+        let budget = integrator.settings.gather_budget();
         let mut row = 0;
         let mut tile = 0u64;
         while row < h {
@@ -162,7 +161,7 @@ impl<'a> Renderer<'a> {
             splat_direct(&out, &mut buf, 1.0 / spp);
             let t3 = Instant::now();
             self.stats.camera_paths += out.paths;
-            self.stats.forward_rays += settings.forward_rays;
+            self.stats.forward_rays += integrator.forward_rays;
             self.stats.camera_seconds += (t1 - t0).as_secs_f64();
             self.stats.build_seconds += (t2 - t1).as_secs_f64();
             self.stats.light_seconds += (t3 - t2).as_secs_f64();

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::setting::Setting;
 use crate::medium::{ChannelPick, HomogeneousMedium, Mixture};
 use crate::spectrum::Spectrum;
 
@@ -57,19 +58,21 @@ pub const DEFAULT_GATHER_BYTES: u64 = 4 << 30;
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IntegratorDesc {
-    /// Integration sphere / cylinder radius in metres.
-    pub radius: f32,
+    /// Integration sphere / cylinder radius in metres, or `"auto"`: from the pixel footprint at
+    /// the camera's first surface hits (`radius::auto_radius`).
+    pub radius: Setting<f32>,
     /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
     /// after pass p. 1 keeps the radius fixed (the paper's setting).
     pub alpha: f32,
     /// Forward (light) rays traced per pass.
-    pub forward_rays: u64,
+    pub forward_rays: Setting<u64>,
     /// Camera samples per pixel per pass.
-    pub camera_samples: u32,
+    #[serde(alias = "camera_paths")]
+    pub camera_samples: Setting<u32>,
     /// Longest camera or forward path in events.
     pub max_depth: u32,
     /// Multiple-spheres control parameter in (0, 1]; 1 = one sphere per camera segment.
-    pub q: f32,
+    pub q: Setting<f32>,
     pub volume: VolumeKind,
     pub mode: GatherMode,
     pub direct: DirectMode,
@@ -90,12 +93,12 @@ pub struct IntegratorDesc {
 impl Default for IntegratorDesc {
     fn default() -> Self {
         Self {
-            radius: 0.01,
+            radius: Setting::Auto,
             alpha: 1.0,
-            forward_rays: 200_000,
-            camera_samples: 1,
+            forward_rays: Setting::Auto,
+            camera_samples: Setting::Auto,
             max_depth: 32,
-            q: 1.0,
+            q: Setting::Auto,
             volume: VolumeKind::Spheres,
             mode: GatherMode::FirstExtinction,
             direct: DirectMode::Nee,
@@ -112,10 +115,12 @@ impl Default for IntegratorDesc {
 impl IntegratorDesc {
     /// Reports every out-of-range setting to `fail(key, message)`.
     pub fn check(&self, mut fail: impl FnMut(&str, String)) {
-        if !(self.radius.is_finite() && self.radius > 0.0) {
+        if let Some(r) = self.radius.value()
+            && !(r.is_finite() && r > 0.0)
+        {
             fail(
                 "integrator.radius",
-                format!("must be a finite number > 0, got {}", self.radius),
+                format!("must be a finite number > 0 or \"auto\", got {r}"),
             );
         }
         if !(self.alpha > 0.0 && self.alpha <= 1.0) {
@@ -124,17 +129,29 @@ impl IntegratorDesc {
                 format!("must be in (0, 1], got {}", self.alpha),
             );
         }
-        if !(self.q > 0.0 && self.q <= 1.0) {
-            fail("integrator.q", format!("must be in (0, 1], got {}", self.q));
-        }
-        if !(1..=1_000_000_000_000).contains(&self.forward_rays) {
+        if let Some(q) = self.q.value()
+            && !(q > 0.0 && q <= 1.0)
+        {
             fail(
-                "integrator.forward_rays",
-                format!("must be in 1..=1e12, got {}", self.forward_rays),
+                "integrator.q",
+                format!("must be in (0, 1] or \"auto\", got {q}"),
             );
         }
-        if !(1..=4096).contains(&self.camera_samples) {
-            fail("integrator.camera_samples", "must be in 1..=4096".into());
+        if let Some(n) = self.forward_rays.value()
+            && !(1..=1_000_000_000_000).contains(&n)
+        {
+            fail(
+                "integrator.forward_rays",
+                format!("must be in 1..=1e12 or \"auto\", got {n}"),
+            );
+        }
+        if let Some(n) = self.camera_samples.value()
+            && !(1..=4096).contains(&n)
+        {
+            fail(
+                "integrator.camera_samples",
+                "must be in 1..=4096 or \"auto\"".into(),
+            );
         }
         if !(1..=4096).contains(&self.max_depth) {
             fail("integrator.max_depth", "must be in 1..=4096".into());

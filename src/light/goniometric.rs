@@ -224,7 +224,7 @@ fn linear_sin_integral(a: f64, b: f64, g0: f64, g1: f64, frac: f64) -> f64 {
 /// Gamma in `[g0, g1]` whose CDF under the density `(a + (b - a) s) sin gamma` is `v`.
 fn sample_linear_sin(a: f64, b: f64, g0: f64, g1: f64, v: f64) -> f64 {
     let total = linear_sin_integral(a, b, g0, g1, 1.0);
-    if !(total > 0.0) {
+    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return g0 + v * (g1 - g0);
     }
     let target = v * total;

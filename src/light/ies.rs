@@ -190,6 +190,36 @@ fn read_numbers(nums: &mut Numbers) -> Result<IesData, IesError> {
     let multiplier = nums.positive("the candela multiplier")?;
     let nv = nums.count("the number of vertical angles", 2)?;
     let nh = nums.count("the number of horizontal angles", 1)?;
+    read_type_and_units(nums)?;
+    for what in [
+        "the luminous width",
+        "the luminous length",
+        "the luminous height",
+    ] {
+        nums.number(what)?;
+    }
+    let ballast_factor = nums.positive("the ballast factor")?;
+    nums.number("the ballast-lamp factor (future use)")?;
+    let (_, input_watts) = nums.number("the input watts")?;
+    let vertical = nums.angles("vertical angle", nv, 0.0, 180.0)?;
+    let start = nums.tokens.get(nums.next).map_or(nums.last_line, |t| t.0);
+    let horizontal = nums.angles("horizontal angle", nh, 0.0, 360.0)?;
+    check_horizontal(nums, start, &horizontal)?;
+    let candela = read_candela(nums, nv, nh)?;
+    Ok(IesData {
+        lamps,
+        lumens_per_lamp,
+        multiplier,
+        ballast_factor,
+        input_watts,
+        vertical,
+        horizontal,
+        candela,
+    })
+}
+
+/// The photometric type (only C is supported) and the units type (feet or metres).
+fn read_type_and_units(nums: &mut Numbers) -> Result<(), IesError> {
     let (line, kind) = nums.number("the photometric type")?;
     let name = match kind {
         1.0 => None,
@@ -211,20 +241,11 @@ fn read_numbers(nums: &mut Numbers) -> Result<IesData, IesError> {
             format!("units type must be 1 (feet) or 2 (metres), got {units}"),
         ));
     }
-    for what in [
-        "the luminous width",
-        "the luminous length",
-        "the luminous height",
-    ] {
-        nums.number(what)?;
-    }
-    let ballast_factor = nums.positive("the ballast factor")?;
-    nums.number("the ballast-lamp factor (future use)")?;
-    let (_, input_watts) = nums.number("the input watts")?;
-    let vertical = nums.angles("vertical angle", nv, 0.0, 180.0)?;
-    let start = nums.tokens.get(nums.next).map_or(nums.last_line, |t| t.0);
-    let horizontal = nums.angles("horizontal angle", nh, 0.0, 360.0)?;
-    check_horizontal(nums, start, &horizontal)?;
+    Ok(())
+}
+
+/// The table's `nv * nh` candela values, and nothing after them.
+fn read_candela(nums: &mut Numbers, nv: usize, nh: usize) -> Result<Vec<f64>, IesError> {
     let mut candela = Vec::with_capacity(nv * nh);
     for i in 0..nv * nh {
         let what = format!(
@@ -248,16 +269,7 @@ fn read_numbers(nums: &mut Numbers) -> Result<IesData, IesError> {
             ),
         ));
     }
-    Ok(IesData {
-        lamps,
-        lumens_per_lamp,
-        multiplier,
-        ballast_factor,
-        input_watts,
-        vertical,
-        horizontal,
-        candela,
-    })
+    Ok(candela)
 }
 
 /// Type C horizontal angles start at 0 and end at 0 (rotational symmetry), 90 (symmetry in each

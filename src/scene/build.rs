@@ -15,6 +15,7 @@ use crate::camera::Camera;
 use crate::film::FilmExtras;
 use crate::geometry::Geometry;
 use crate::integrator::Integrator;
+use crate::integrator::radius::auto_radius;
 use crate::light::{Light, LightSet};
 use crate::material::Material;
 use crate::spectrum::Spectrum;
@@ -44,7 +45,8 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
             materials: d.materials.keys().map(String::as_str).collect(),
             media: d.media.keys().map(String::as_str).collect(),
             outside: d.medium.as_deref(),
-            radius: d.integrator.radius,
+            // Resolved below once the camera and geometry exist (lights need it).
+            radius: d.integrator.radius.value().unwrap_or(0.0),
         },
     );
     // Resolve every named spectrum once, so that a bad file is reported even if unused.
@@ -58,10 +60,15 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
     let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
     let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
-    let lights = build_lights(&b, d, &geometry, area_lights)?;
     let camera = d.camera.build();
-    let (world_min, world_max) = world_box(&geometry, &camera, d.integrator.radius);
-    let warnings = warnings(scene, &geometry, &lights);
+    let mut b = b;
+    b.radius = match d.integrator.radius.value() {
+        Some(r) => r,
+        None => auto_radius(&camera, &geometry),
+    };
+    let lights = build_lights(&b, d, &geometry, area_lights)?;
+    let (world_min, world_max) = world_box(&geometry, &camera, b.radius);
+    let warnings = warnings(scene, &geometry, &lights, b.radius);
     let outside = b.outside_medium();
     let mut built = Scene {
         grid,
@@ -200,7 +207,12 @@ fn world_box(geometry: &Geometry, camera: &Camera, radius: f32) -> (Vec3, Vec3) 
 }
 
 /// Warnings that need the built scene: no light that emits, a radius as large as the scene.
-fn warnings(scene: &LoadedScene, geometry: &Geometry, lights: &LightSet) -> Vec<SceneWarning> {
+fn warnings(
+    scene: &LoadedScene,
+    geometry: &Geometry,
+    lights: &LightSet,
+    radius: f32,
+) -> Vec<SceneWarning> {
     let source = scene.source();
     let mut w = Vec::new();
     let emits = (0..lights.lights().len()).any(|i| lights.pick_probability(i) > 0.0);
@@ -211,7 +223,6 @@ fn warnings(scene: &LoadedScene, geometry: &Geometry, lights: &LightSet) -> Vec<
              will be black",
         ));
     }
-    let radius = scene.desc.integrator.radius;
     let bounds = geometry.bounds();
     let size = bounds.diagonal().length();
     if !bounds.is_empty() && size > 0.0 && radius > LARGE_RADIUS * size {

@@ -25,9 +25,9 @@ pub struct Summary {
     pub spectra: usize,
     pub volume: String,
     pub mode: String,
-    pub q: f32,
-    pub radius: f32,
-    pub forward_rays: u64,
+    pub q: crate::integrator::setting::Setting<f32>,
+    pub radius: crate::integrator::setting::Setting<f32>,
+    pub forward_rays: crate::integrator::setting::Setting<u64>,
     pub memory: crate::integrator::MemoryEstimate,
     /// Per medium: its phase function and per range of bins its optical properties.
     pub media_report: Vec<String>,
@@ -182,7 +182,7 @@ impl fmt::Display for Summary {
         )?;
         writeln!(
             f,
-            "integrator:   volume {}, mode {}, q = {}, radius = {} m, {} forward rays per pass",
+            "integrator:   volume {}, mode {}, q = {}, radius = {} (m), forward rays per pass {}",
             self.volume, self.mode, self.q, self.radius, self.forward_rays
         )?;
         let m = &self.memory;

@@ -15,9 +15,25 @@ use std::process::Command;
 const SUBCOMMANDS: [&str; 6] = ["render", "merge", "info", "spectrum", "study", "probe"];
 
 /// Words the documents use as placeholders for the reader's own values.
-const PLACEHOLDERS: [&str; 17] = [
-    "SCENE", "FILE", "NAME", "OUT", "PARTS", "DIR", "N", "K", "I", "C", "L", "T", "SECONDS", "KEY",
-    "VALUE", "V1", "REF.bin",
+const PLACEHOLDERS: [&str; 18] = [
+    "SCENE",
+    "FILE",
+    "NAME",
+    "OUT",
+    "PARTS",
+    "DIR",
+    "N",
+    "K",
+    "I",
+    "C",
+    "L",
+    "T",
+    "SECONDS",
+    "KEY",
+    "VALUE",
+    "V1",
+    "REF.bin",
+    "IMAGE.exr",
 ];
 
 /// Shell words that end one command (and maybe start another).
@@ -212,6 +228,7 @@ fn shrink(words: &[String], out: &Path, range_unit: u64) -> Vec<String> {
                 args.extend([w.clone(), redirect(&v, out)]);
             }
             "scene.toml" => args.push("scenes/fog-cube.toml".into()),
+            image if sub == "probe" && image.ends_with(".exr") => args.push(redirect(image, out)),
             part if sub == "merge" && part.ends_with(".brume") => {
                 args.extend(glob(&redirect(part, out)));
             }

@@ -124,7 +124,7 @@ pub fn metered_stops(img: &SpectralImage, conv: &FilmToRgb) -> f32 {
     }
     y.sort_by(f64::total_cmp);
     let p99 = y[((y.len() - 1) as f64 * 0.99) as usize];
-    if !(p99 > 0.0) {
+    if p99.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
     let floor = p99 * FLOOR;

@@ -154,7 +154,23 @@ pub(super) fn write(
         // the line and holds its power over its narrow bin): the edges let a reader integrate.
         text("brumeBinEdges", &bin_edges(img));
     }
-    image.write().to_file(path).map_err(|e| e.to_string())
+    write_sorted(image, path)
+}
+
+/// Writes `image` with its header's attributes in name order: same passes, same bytes (the
+/// crate's own attribute order varies between processes).
+fn write_sorted(
+    image: Image<Layer<AnyChannels<FlatSamples>>>,
+    path: &Path,
+) -> std::result::Result<(), String> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write()
+        .to_buffered(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    let mut bytes = bytes.into_inner();
+    super::exr_header::sort_attributes(&mut bytes);
+    std::fs::write(path, bytes).map_err(|e| e.to_string())
 }
 
 /// The standard-error layer: `noise.R/G/B` and `noise.Y` (the luminance channel's error), both

@@ -65,7 +65,7 @@ pub fn auto_range(lum: &[f64], range: Option<[f32; 2]>) -> [f64; 2] {
 
 /// Position of `value` on the map's log scale over `[lo, hi]`, clamped to [0, 1].
 pub fn position(value: f64, [lo, hi]: [f64; 2]) -> f64 {
-    if !(value > 0.0) {
+    if value.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
     ((value.log10() - lo.log10()) / (hi.log10() - lo.log10())).clamp(0.0, 1.0)

@@ -46,7 +46,7 @@ fn channel<'a>(layer: &'a AnyChannels<FlatSamples>, name: &str) -> Option<&'a Fl
     layer
         .list
         .iter()
-        .find(|c| c.name == Text::from(name))
+        .find(|c| c.name.eq(name))
         .map(|c| &c.sample_data)
 }
 

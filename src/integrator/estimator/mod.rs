@@ -47,6 +47,8 @@ pub use truncated::{TruncatedCylinder, cylinder_truncated};
 /// One camera segment in a medium, as the camera side of an estimator sees it.
 pub struct CameraSegment<'a> {
     pub medium: &'a HomogeneousMedium,
+    /// The medium's index in the scene.
+    pub medium_id: u32,
     /// The segment's unit direction (camera -> scene).
     pub dir: Vec3,
     /// The pass's gather radius.
@@ -115,13 +117,15 @@ pub enum Estimator {
 }
 
 impl Estimator {
-    /// The estimator the settings name, for a scene with `media`.
+    /// The estimator the settings name, for a scene with `media` (spheres with `q[m]` in
+    /// medium `m`).
     pub fn from_desc(
         desc: &IntegratorDesc,
+        q: &[f32],
         media: &[HomogeneousMedium],
     ) -> Result<Self, MediumError> {
         Ok(match desc.volume {
-            VolumeKind::Spheres => Estimator::Spheres(Spheres::new(desc.q, media)?),
+            VolumeKind::Spheres => Estimator::Spheres(Spheres::new(q, media)?),
             VolumeKind::Cylinder => Estimator::Cylinder(Cylinder),
             VolumeKind::CylinderTruncated => {
                 Estimator::TruncatedCylinder(TruncatedCylinder::new(desc.channels()))

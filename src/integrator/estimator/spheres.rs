@@ -17,18 +17,23 @@ use crate::medium::{
 };
 use crate::spectrum::Spectrum;
 
-/// The multiple-spheres estimator with its control parameter q.
+/// The multiple-spheres estimator with its control parameter q, per medium.
 #[derive(Clone, Debug)]
 pub struct Spheres {
-    walk: MultiSphereWalk,
+    /// Per medium: the walk with that medium's q.
+    walks: Vec<MultiSphereWalk>,
     /// Per medium: `st_l - st_min` (see `relative_extinction`), None when grey (all factors 1).
     extinction: Vec<Option<Spectrum>>,
 }
 
 impl Spheres {
-    pub fn new(q: f32, media: &[HomogeneousMedium]) -> Result<Self, MediumError> {
+    /// Spheres with `q[m]` in medium `m` of `media`.
+    pub fn new(q: &[f32], media: &[HomogeneousMedium]) -> Result<Self, MediumError> {
         Ok(Self {
-            walk: MultiSphereWalk::new(q)?,
+            walks: q
+                .iter()
+                .map(|&q| MultiSphereWalk::new(q))
+                .collect::<Result<_, _>>()?,
             extinction: media
                 .iter()
                 .map(|m| (!m.grey).then(|| relative_extinction(m)))
@@ -36,9 +41,9 @@ impl Spheres {
         })
     }
 
-    /// The control parameter q.
-    pub fn q(&self) -> f32 {
-        self.walk.q()
+    /// The control parameter q of medium `m`.
+    pub fn q(&self, m: u32) -> Option<f32> {
+        self.walks.get(m as usize).map(MultiSphereWalk::q)
     }
 }
 
@@ -52,8 +57,11 @@ impl VolumeEstimator for Spheres {
         rng: &mut R,
         leave: impl FnMut(f32, f32),
     ) -> WalkEnd {
-        self.walk
-            .walk_scaled(cam.medium, cam.mix, cam.len, rng, leave)
+        match self.walks.get(cam.medium_id as usize) {
+            Some(walk) => walk.walk_scaled(cam.medium, cam.mix, cam.len, rng, leave),
+            // Every medium has its walk (`new`): none means no spheres, the path goes on.
+            None => crate::medium::sample_extinction(cam.medium, cam.mix, cam.len, rng),
+        }
     }
 
     #[inline]

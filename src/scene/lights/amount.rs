@@ -28,8 +28,12 @@ pub enum Amount {
     Illuminance(f32),
 }
 
-/// The keys a light may give its amount by, with their values (None: absent).
-pub struct Given(pub Vec<(&'static str, Option<f32>, fn(f32) -> Amount)>);
+/// One key a light may give its amount by: its name, its value (None: absent), and the amount
+/// a value means.
+pub type AmountKey = (&'static str, Option<f32>, fn(f32) -> Amount);
+
+/// The keys a light may give its amount by, with their values.
+pub struct Given(pub Vec<AmountKey>);
 
 impl Given {
     /// Checks that exactly one key is given (at most one when `optional`, as with a profile
