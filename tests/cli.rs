@@ -200,3 +200,6 @@ mod docs_examples;
 
 #[path = "cli/photometry.rs"]
 mod photometry;
+
+#[path = "cli/auto_settings.rs"]
+mod auto_settings;

@@ -80,6 +80,9 @@ pub struct RenderArgs {
     /// Print nothing but errors.
     #[arg(long, short = 'q')]
     pub quiet: bool,
+    /// Also print what the automatic settings chose and the estimates behind it.
+    #[arg(long, short = 'v', conflicts_with = "quiet")]
+    pub verbose: bool,
     /// Save the film state to FILE at the end (and on interrupt, and every
     /// --checkpoint-every minutes), to continue later with --resume.
     #[arg(long, value_name = "FILE")]

@@ -20,7 +20,7 @@ use super::SpectralImage;
 pub use exposure::{Exposure, Units, metered_stops};
 pub use exr::{UNITS_ATTRIBUTE, spectral_channel_name};
 
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct OutputOptions {
     /// Working space of the EXR's RGB (the PNG is always display sRGB).
     pub colour_space: ColourSpace,
@@ -38,6 +38,9 @@ pub struct OutputOptions {
     pub noise_layer: bool,
     /// Chromatic adaptation from the scene's D65 white to a working space with another white.
     pub cat: Cat,
+    /// Extra text attributes of the EXR header (name, value), e.g. the automatic settings'
+    /// choice (`brumeAutoSettings`).
+    pub attributes: Vec<(String, String)>,
 }
 
 #[derive(Debug, thiserror::Error)]

@@ -366,7 +366,7 @@ impl Geometry {
                     AnalyticKind::Disc { .. } => true,
                 }
             }
-            _ => true,
+            AreaSampler::Triangles { .. } | AreaSampler::Empty => true,
         }
     }
 

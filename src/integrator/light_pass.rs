@@ -40,6 +40,9 @@ pub struct LightJob {
     pub tile: u64,
     /// Scale of every splat: 1 / (forward rays x camera samples per pixel).
     pub norm: f32,
+    /// Counts the gather candidates the pass's forward rays met (work, for automatic
+    /// settings; a sum, so the same whatever the thread count).
+    pub hits: AtomicU64,
 }
 
 /// Traces the pass's forward rays against `gather` into `buf`. Returns false, leaving `buf`
@@ -96,10 +99,12 @@ pub fn light_pass(
                         flux0: 0.0,
                         class: CLASS_C,
                         deposits: true,
+                        hits: 0,
                     };
                     for _ in 0..chunk.min(total - c * chunk) {
                         tracer.trace(&mut rng);
                     }
+                    job.hits.fetch_add(tracer.hits, Ordering::Relaxed);
                     shared.finish(c, sink);
                 }
             });
@@ -212,6 +217,8 @@ struct ForwardTracer<'a> {
     /// light whose direct light next-event estimation handles, until its first scattering or
     /// surface event (method note 9).
     deposits: bool,
+    /// Gather candidates met (surface spheres and volumes passed to their test).
+    hits: u64,
 }
 
 impl ForwardTracer<'_> {
@@ -268,7 +275,9 @@ impl ForwardTracer<'_> {
             -hit.ng
         };
         let inv_area = 1.0 / (PI * gather.radius * gather.radius);
+        let mut hits = 0u64;
         gather.surfaces_at(hit.p, |rec| {
+            hits += 1;
             let rn = rec.n.decode();
             // Same side of the same surface as the camera path's hit (its own shape: the disc
             // fraction that renormalises the record counts only that shape).
@@ -293,6 +302,7 @@ impl ForwardTracer<'_> {
             self.buf
                 .splat(Layer::Surface, rec.pixel as usize, w, &factor.0[..n], norm);
         });
+        self.hits += hits;
     }
 
     /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
@@ -339,7 +349,9 @@ impl ForwardTracer<'_> {
             flux: &self.flux,
             flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
         };
+        let mut hits = 0u64;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
+            hits += 1;
             if seg.classes & class == 0 {
                 return;
             }
@@ -354,6 +366,7 @@ impl ForwardTracer<'_> {
                 buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
             }
         });
+        self.hits += hits;
     }
 }
 

@@ -5,7 +5,7 @@
 //! direct light ([`Direct`]) and the radius schedule.
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
-mod auto;
+pub mod auto;
 mod camera_pass;
 pub mod direct;
 pub mod estimator;
@@ -36,7 +36,7 @@ use crate::world::Scene;
 /// The values `"auto"` settings take before anything is measured (and while they are).
 pub mod defaults {
     /// Forward rays per pass.
-    pub const FORWARD_RAYS: u64 = 200_000;
+    pub const FORWARD_RAYS: u64 = 50_000;
     /// Camera samples per pixel per pass.
     pub const CAMERA_SAMPLES: u32 = 1;
     /// The multiple-spheres control parameter.
@@ -81,6 +81,32 @@ impl Integrator {
                 .unwrap_or(defaults::CAMERA_SAMPLES),
             q,
         })
+    }
+}
+
+impl Integrator {
+    /// How the passes sample now (q per medium, forward rays, camera paths per pixel).
+    pub fn pass_config(&self) -> auto::PassConfig {
+        auto::PassConfig {
+            q: self.q.clone(),
+            forward_rays: self.forward_rays,
+            camera_samples: self.camera_samples,
+        }
+    }
+
+    /// Makes the next passes sample as `c` says (an automatic setting's pilot or choice).
+    pub fn apply(
+        &mut self,
+        c: &auto::PassConfig,
+        media: &[crate::medium::HomogeneousMedium],
+    ) -> Result<(), MediumError> {
+        if c.q != self.q {
+            self.estimator = Estimator::from_desc(&self.settings, &c.q, media)?;
+            self.q = c.q.clone();
+        }
+        self.forward_rays = c.forward_rays;
+        self.camera_samples = c.camera_samples;
+        Ok(())
     }
 }
 

@@ -1,10 +1,11 @@
 //! The pass loop: camera pass -> gather structure -> light pass -> film, until a budget of
 //! passes or wall-clock time is spent. Radii shrink progressively when `integrator.alpha` < 1.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;
 
 use super::Integrator;
+use super::auto::{Choice, Tuner, Work, pixel_totals};
 use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
@@ -26,12 +27,17 @@ pub struct Stats {
     pub surface_records: u64,
     pub volume_records: u64,
     pub forward_rays: u64,
+    /// Gather candidates the forward rays met (surface spheres and volumes tested).
+    pub gather_hits: u64,
     pub peak_gather_bytes: usize,
     pub camera_seconds: f64,
     pub build_seconds: f64,
     pub light_seconds: f64,
     /// Gather tiles traced (more than one per pass when the memory budget splits passes).
     pub tiles: u64,
+    /// Pilot passes of automatic settings rendered again, not added (a resumed render or a
+    /// part that starts after them).
+    pub pilot_passes: u64,
 }
 
 /// Renders passes of a scene with an integrator into a film.
@@ -41,6 +47,8 @@ pub struct Renderer<'a> {
     seed: u64,
     film: Film,
     radius: f32,
+    /// Chooses the `"auto"` settings from pilot passes (None when there are none).
+    tuner: Option<Tuner>,
     pub stats: Stats,
 }
 
@@ -52,6 +60,11 @@ impl<'a> Renderer<'a> {
             seed,
             film: Film::new(w as usize, h as usize, scene.grid.clone()),
             radius: integrator.radius.at(0),
+            tuner: Tuner::new(
+                &integrator.settings,
+                scene.media.len(),
+                integrator.pass_config(),
+            ),
             integrator,
             stats: Stats::default(),
         }
@@ -85,6 +98,11 @@ impl<'a> Renderer<'a> {
         r.radius = r.integrator.radius.at(film.end());
         r.film = film;
         Ok(r)
+    }
+
+    /// The counters of the passes rendered so far.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
     }
 
     pub fn film(&self) -> &Film {
@@ -121,14 +139,72 @@ impl<'a> Renderer<'a> {
     /// is set: between rows of the camera pass and between chunks of forward rays, so that an
     /// interrupt never waits for a long pass.
     pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
-        let (scene, integrator) = (self.scene, &self.integrator);
         let pass = self.film.end();
+        if !self.prepare(pass, stop) {
+            return false;
+        }
+        let Some((buf, work)) = self.render_into(pass, stop) else {
+            return false;
+        };
+        if let Some(t) = &mut self.tuner {
+            t.record(pass, pixel_totals(&buf.data, buf.pixels, buf.n), work);
+        }
+        self.film.add_pass(&buf);
+        true
+    }
+
+    /// Makes the integrator sample as pass `pass` must: an automatic setting's pilot
+    /// configuration or its choice. A render that starts after pilot passes it has not seen
+    /// (a resumed render, a `--pass-range` part) renders them first, without adding them to
+    /// the film, so that it chooses exactly as an uninterrupted run does.
+    fn prepare(&mut self, pass: u64, stop: &AtomicBool) -> bool {
+        let Some((mut next, pilots)) = self
+            .tuner
+            .as_ref()
+            .map(|t| (t.recorded(), t.pilot_passes()))
+        else {
+            return true;
+        };
+        while next < pass.min(pilots) {
+            if !self.configure(next) {
+                return false;
+            }
+            let Some((buf, work)) = self.render_into(next, stop) else {
+                return false;
+            };
+            self.stats.pilot_passes += 1;
+            if let Some(t) = &mut self.tuner {
+                t.record(next, pixel_totals(&buf.data, buf.pixels, buf.n), work);
+            }
+            next += 1;
+        }
+        self.configure(pass)
+    }
+
+    /// Applies the tuner's configuration of `pass` (false if it cannot be built).
+    fn configure(&mut self, pass: u64) -> bool {
+        let Some(c) = self.tuner.as_ref().and_then(|t| t.config(pass)).cloned() else {
+            return true;
+        };
+        self.integrator.apply(&c, &self.scene.media).is_ok()
+    }
+
+    /// The automatic settings' choice and the estimates behind it, once the pilot passes are
+    /// done (None without automatic settings).
+    pub fn auto_choice(&self) -> Option<&Choice> {
+        self.tuner.as_ref().and_then(Tuner::choice)
+    }
+
+    /// Renders pass `pass` with the integrator as configured, or None when `stop` was set.
+    fn render_into(&mut self, pass: u64, stop: &AtomicBool) -> Option<(PassBuffer, Work)> {
+        let (scene, integrator) = (self.scene, &self.integrator);
         self.radius = integrator.radius.at(pass);
         let (w, h) = scene.camera.resolution();
         let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
         let spp = integrator.camera_samples as f32;
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
+        let mut work = Work::default();
         let mut row = 0;
         let mut tile = 0u64;
         while row < h {
@@ -140,12 +216,11 @@ impl<'a> Renderer<'a> {
                 first_row: row,
                 budget_bytes: budget,
             };
-            let Some((mut out, next)) = camera_pass(scene, integrator, &job, stop) else {
-                return false;
-            };
+            let (mut out, next) = camera_pass(scene, integrator, &job, stop)?;
             let t1 = Instant::now();
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
+            work.volumes += out.volumes.len() as u64;
             let gather = Gather::from_output(&integrator.estimator, self.radius, &mut out);
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
@@ -154,12 +229,17 @@ impl<'a> Renderer<'a> {
                 pass,
                 tile,
                 norm,
+                hits: AtomicU64::new(0),
             };
             if !light_pass(scene, integrator, &gather, &light, &mut buf, stop) {
-                return false;
+                return None;
             }
             splat_direct(&out, &mut buf, 1.0 / spp);
             let t3 = Instant::now();
+            work.paths += out.paths;
+            work.rays += integrator.forward_rays;
+            work.hits += light.hits.load(Ordering::Relaxed);
+            self.stats.gather_hits += light.hits.load(Ordering::Relaxed);
             self.stats.camera_paths += out.paths;
             self.stats.forward_rays += integrator.forward_rays;
             self.stats.camera_seconds += (t1 - t0).as_secs_f64();
@@ -169,8 +249,7 @@ impl<'a> Renderer<'a> {
             row = next;
             tile += 1;
         }
-        self.film.add_pass(&buf);
-        true
+        Some((buf, work))
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.

@@ -1,5 +1,6 @@
-//! The progressive radius schedule: `R_{p+1}^2 = R_p^2 (p + alpha) / (p + 1)` after pass `p`
-//! (Hachisuka & Jensen 2009, applied per pass as in Knaus & Zwicker 2011). `alpha = 1` keeps
+//! The progressive radius schedule: `R_{p+1}^2 = R_p^2 (p + 1 + alpha) / (p + 2)` from pass
+//! `p` to pass `p + 1`, passes counted from 0 (the rule `(i + alpha) / (i + 1)` of Hachisuka &
+//! Jensen 2009 with i = p + 1 passes done, applied per pass as in Knaus & Zwicker 2011). `alpha = 1` keeps
 //! the radius fixed (the paper's setting). Also the starting radius `"auto"` picks.
 
 use crate::camera::Camera;

@@ -51,7 +51,7 @@ pub struct SegmentRecord {
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeRecord {
     pub segment: u32,
-    /// Distance along the segment (spheres) or length (cylinders).
+    /// Distance along the segment (spheres) or where the piece ends along it (cylinders).
     pub s: f32,
     /// Spheres: `q / pdf_mix(s)`, scaled as `MixEval` (see `estimator::sphere_weight`);
     /// cylinders: where the piece starts along the segment (cylinders are cut into pieces

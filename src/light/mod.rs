@@ -250,7 +250,11 @@ impl Light {
                     Spectrum::ZERO
                 }
             }
-            _ => Spectrum::ZERO,
+            // Only area lights have a surface that can be hit.
+            Light::Directional { .. }
+            | Light::Point { .. }
+            | Light::Spot { .. }
+            | Light::Laser { .. } => Spectrum::ZERO,
         }
     }
 
@@ -264,7 +268,9 @@ impl Light {
                 profile,
                 ..
             } => *power * profile.fraction(frame.to_local(dir.normalize())),
-            _ => Spectrum::ZERO,
+            // Not point-like: next-event estimation samples these by their own routines
+            // (directional, area) or leaves them to photons (a laser's beam has no spread).
+            Light::Directional { .. } | Light::Laser { .. } | Light::Area { .. } => Spectrum::ZERO,
         }
     }
 }

@@ -205,7 +205,11 @@ pub fn build(
         Some(p) => {
             let key = match p {
                 PhaseDesc::Tabulated { .. } => "phase.file",
-                _ => "phase",
+                PhaseDesc::Hg { .. }
+                | PhaseDesc::TwoTermHg { .. }
+                | PhaseDesc::Rayleigh
+                | PhaseDesc::Draine { .. }
+                | PhaseDesc::HgDraine { .. } => "phase",
             };
             (p.build(grid, resolve).map_err(keyed(key))?, key)
         }
@@ -223,7 +227,16 @@ pub fn build(
     let medium = HomogeneousMedium::with_phase(&ss, &sa, phase, n).map_err(|e| {
         let key = match e {
             MediumError::Coefficient { what, .. } => what,
-            _ => key,
+            MediumError::PhaseG(_)
+            | MediumError::PhaseParameter { .. }
+            | MediumError::PhaseTable(_)
+            | MediumError::PhaseFile { .. }
+            | MediumError::Read { .. }
+            | MediumError::Droplets(_)
+            | MediumError::BinCount { .. }
+            | MediumError::PowerLaw { .. }
+            | MediumError::Q(_)
+            | MediumError::PhaseLanes { .. } => key,
         };
         keyed(key)(e)
     })?;

@@ -1,5 +1,6 @@
-//! Ctrl-C and SIGTERM: the first finishes the pass in flight (the engine never adds a partial
-//! pass to the film), then brume saves what it has and exits 130; a second aborts at once.
+//! Ctrl-C and SIGTERM: the first abandons the pass in flight (the engine never adds a partial
+//! pass to the film; it stops between rows and chunks of rays, so it never waits for a long
+//! pass), then brume saves the passes it has and exits 130; a second aborts at once.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -19,8 +20,8 @@ pub fn install(quiet: bool) -> Arc<AtomicBool> {
             flag.store(true, Ordering::SeqCst);
             if !quiet {
                 eprintln!(
-                    "\nbrume: interrupt: finishing the pass in flight, then saving \
-                     (interrupt again to abort without saving)"
+                    "\nbrume: interrupt: abandoning the pass in flight, then saving the \
+                     passes done (interrupt again to abort without saving)"
                 );
             }
         } else {

@@ -17,6 +17,7 @@ use super::film_files::{self, is_film_path};
 use super::outputs;
 use super::progress::Progress;
 use brume::film::{Film, FilmFile, FilmId, checkpoint, output};
+use brume::integrator::auto::Choice;
 use brume::integrator::{Budget, MemoryEstimate, Renderer};
 use brume::scene::LoadedScene;
 
@@ -47,8 +48,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let pool = super::thread_pool(args.threads)?;
 
     let start = Instant::now();
-    let (film, interrupted) = pool.install(|| render(args, &loaded, &id, &plan, resumed, &stop))?;
-    let saved = save(args, (&outputs, &derived), &film, &id)?;
+    let (film, interrupted, auto) =
+        pool.install(|| render(args, &loaded, &id, &plan, resumed, &stop))?;
+    if let (Some(choice), true) = (&auto, args.verbose) {
+        for line in &choice.report {
+            println!("auto: {line}");
+        }
+    }
+    let saved = save(args, (&outputs, &derived), &film, &id, auto.as_ref())?;
     report(args, &film, &id, interrupted, start, &saved, &cmd);
     if film.passes > 0 && plan.range.is_none() {
         film_files::report_extras(&film, args.quiet);
@@ -101,7 +108,7 @@ fn render(
     plan: &plan::Plan,
     resumed: Option<FilmFile>,
     stop: &AtomicBool,
-) -> anyhow::Result<(Film, bool)> {
+) -> anyhow::Result<(Film, bool, Option<Choice>)> {
     let (scene, warnings) = brume::scene::build_with_warnings(loaded)?;
     for w in &warnings {
         eprintln!("brume: warning: {w}");
@@ -153,7 +160,22 @@ fn render(
         }
     });
     progress.finish();
-    Ok((renderer.into_film(), interrupted))
+    if args.verbose {
+        let s = renderer.stats();
+        println!(
+            "work: {} camera paths, {} volume records, {} forward rays, {} gather hits; \
+             seconds: camera {:.3}, build {:.3}, light {:.3}",
+            s.camera_paths,
+            s.volume_records,
+            s.forward_rays,
+            s.gather_hits,
+            s.camera_seconds,
+            s.build_seconds,
+            s.light_seconds
+        );
+    }
+    let auto = renderer.auto_choice().cloned();
+    Ok((renderer.into_film(), interrupted, auto))
 }
 
 /// What was written, and which film file holds the passes (to resume or merge from).
@@ -170,12 +192,17 @@ fn save(
     (outputs, derived): (&[PathBuf], &film_files::Derived),
     film: &Film,
     id: &FilmId,
+    auto: Option<&Choice>,
 ) -> anyhow::Result<Saved> {
     let mut targets: Vec<PathBuf> = Vec::new();
     if film.passes > 0 {
         targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
     }
-    let opts = film_files::output_options(id)?;
+    let mut opts = film_files::output_options(id)?;
+    if let Some(c) = auto {
+        opts.attributes
+            .push(("brumeAutoSettings".into(), c.report.join("; ")));
+    }
     let is_film = |p: &PathBuf| is_film_path(p) || args.checkpoint.as_ref() == Some(p);
     let mut image = None;
     let mut failed = Vec::new();

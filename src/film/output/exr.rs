@@ -122,6 +122,18 @@ pub(super) fn write(
         AnyChannels::sort(ch.into()),
     );
     let mut image = Image::from_layer(layer);
+    header_attributes(&mut image, img, space, opts);
+    write_sorted(image, path)
+}
+
+/// The header's chromaticities and brume's text attributes (colour space, units, the caller's
+/// extra attributes, the spectral layout).
+fn header_attributes(
+    image: &mut Image<Layer<AnyChannels<FlatSamples>>>,
+    img: &SpectralImage,
+    space: ColourSpace,
+    opts: &OutputOptions,
+) {
     let (p, w) = space.chromaticities();
     let v = |xy: [f64; 2]| Vec2(xy[0] as f32, xy[1] as f32);
     image.attributes.chromaticities = Some(Chromaticities {
@@ -145,6 +157,9 @@ pub(super) fn write(
         },
     );
     text(UNITS_ATTRIBUTE, opts.units.name());
+    for (name, value) in &opts.attributes {
+        text(name, value);
+    }
     if opts.spectral_layers {
         text("spectralLayoutVersion", "1.0");
         // The layout's unit for emissive data; channel values are spectral radiance, i.e. per
@@ -154,7 +169,6 @@ pub(super) fn write(
         // the line and holds its power over its narrow bin): the edges let a reader integrate.
         text("brumeBinEdges", &bin_edges(img));
     }
-    write_sorted(image, path)
 }
 
 /// Writes `image` with its header's attributes in name order: same passes, same bytes (the

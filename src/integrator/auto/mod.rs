@@ -1,4 +1,408 @@
-//! `"auto"` settings chosen from measurements of the first passes (issue 18).
+//! `"auto"` settings (`integrator.q`, `forward_rays`, `camera_samples`) chosen from pilot
+//! passes.
+//!
+//! The first passes of a render with an automatic setting are pilot passes: pairs of passes at
+//! a few configurations (every q = 1 and the scene's budgets; each automatic medium alone at
+//! q = [`Q_PILOT`]; the forward rays, or camera paths, times [`BUDGET_FACTOR`]). Each is an
+//! ordinary unbiased pass of the seed's sequence and joins the film. A pair gives an unbiased
+//! estimate of the image's variance per pass, `sum over pixels of (x1 - x2)^2 / 2`, and the
+//! passes' work counters give their cost; the models of [`model`] turn these into the chosen
+//! configuration, which every later pass uses.
+//!
+//! Why pilot passes and not a running re-estimate: a pass's configuration must follow from the
+//! seed alone, so that a render resumed from a checkpoint, a `--pass-range` part and a merge
+//! give the same bits whatever the thread count. The choice depends on the pilot passes only,
+//! which any process can render again (a part that starts after them renders them first,
+//! without adding them); a choice that moved with every pass would make pass 1000 depend on all
+//! passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
+//! weighed by [`COST_WEIGHTS`]), not measured time, for the same reason.
+
+pub mod model;
+
+use model::{BudgetSearch, CostSplit, NoiseSplit, QFit};
+
+use super::settings::{IntegratorDesc, VolumeKind};
 
 /// The smallest q an automatic choice takes: about 33 spheres per camera segment in thick fog.
 pub const Q_MIN: f32 = 0.03;
+/// The q of the pilot passes that measure how a medium's variance falls with q.
+pub const Q_PILOT: f32 = 0.25;
+/// How much the budget pilot multiplies the forward rays (or the camera paths).
+pub const BUDGET_FACTOR: u64 = 4;
+/// Passes per pilot configuration: two give an unbiased variance per pixel.
+pub const REPEATS: u64 = 2;
+/// The budget search's limits: camera paths per pixel, and forward rays per pass.
+pub const MAX_CAMERA_SAMPLES: u32 = 16;
+pub const RAYS_RANGE: (u64, u64) = (10_000, 4_000_000);
+
+/// Seconds per unit of work (camera path, volume record, forward ray, gather hit), measured
+/// with a release build on fog-cube (2 threads; docs/study.md, "Automatic settings"). Only their
+/// ratios matter: they weigh the counters into one cost.
+pub const COST_WEIGHTS: [f64; 4] = [5.0e-6, 8.0e-7, 2.5e-6, 3.0e-7];
+
+/// How one pass samples: q per medium, forward rays, camera paths per pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassConfig {
+    pub q: Vec<f32>,
+    pub forward_rays: u64,
+    pub camera_samples: u32,
+}
+
+/// Deterministic work counters of a pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Work {
+    pub paths: u64,
+    pub volumes: u64,
+    pub rays: u64,
+    pub hits: u64,
+}
+
+impl Work {
+    /// The counters weighed into seconds on the reference machine.
+    pub fn parts(&self) -> [f64; 4] {
+        let n = [self.paths, self.volumes, self.rays, self.hits];
+        std::array::from_fn(|i| n[i] as f64 * COST_WEIGHTS[i])
+    }
+
+    pub fn cost(&self) -> f64 {
+        self.parts().iter().sum()
+    }
+}
+
+/// What a pilot configuration measures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Role {
+    /// Every automatic q at 1, the scene's (or default) budgets.
+    Base,
+    /// Medium `m` at `Q_PILOT`.
+    Medium(usize),
+    /// Forward rays times `BUDGET_FACTOR`.
+    Rays,
+    /// Camera paths per pixel times `BUDGET_FACTOR`.
+    Samples,
+}
+
+/// Variance (with its standard error) and cost of a pilot configuration.
+#[derive(Clone, Copy, Debug)]
+struct Measure {
+    variance: f64,
+    se: f64,
+    work: Work,
+}
+
+/// How many standard errors a difference between two pilots' variances must reach to be
+/// acted on: below it the pilots cannot tell the settings apart, and the base values stay
+/// (rare bright samples, as of a laser seen through fog, make the variance itself noisy).
+pub const Z_SIGNIFICANT: f64 = 2.0;
+
+impl Measure {
+    /// `self.variance - other.variance` if it exceeds `Z_SIGNIFICANT` standard errors,
+    /// else 0.
+    fn gain_over(&self, other: &Measure) -> f64 {
+        let d = self.variance - other.variance;
+        if d > Z_SIGNIFICANT * self.se.hypot(other.se) {
+            d
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The configuration chosen, with the estimates behind it (printed by `brume render -v` and
+/// written into the outputs' metadata).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    pub config: PassConfig,
+    pub report: Vec<String>,
+}
+
+/// Plans the pilot passes and makes the choice from them.
+#[derive(Clone, Debug)]
+pub struct Tuner {
+    pilots: Vec<(Role, PassConfig)>,
+    auto_rays: bool,
+    auto_samples: bool,
+    /// Pilot passes recorded so far (always a prefix of the pilot passes).
+    recorded: u64,
+    /// Per-pixel totals of the first pass of the pair being recorded.
+    first: Option<Vec<f64>>,
+    measures: Vec<Measure>,
+    choice: Option<Choice>,
+}
+
+impl Tuner {
+    /// The tuner of `desc` for a scene of `media` media, with the base configuration `base`
+    /// (the fixed values, and the fallbacks of the automatic ones); None when nothing is
+    /// automatic (or q is automatic but nothing depends on it).
+    pub fn new(desc: &IntegratorDesc, media: usize, base: PassConfig) -> Option<Self> {
+        let spheres = desc.volume == VolumeKind::Spheres;
+        let auto_q = desc.q.value().is_none() && spheres && media > 0;
+        let auto_rays = desc.forward_rays.value().is_none();
+        let auto_samples = desc.camera_samples.value().is_none();
+        if !(auto_q || auto_rays || auto_samples) {
+            return None;
+        }
+        let mut pilots = vec![(Role::Base, base.clone())];
+        if auto_q {
+            for m in 0..media {
+                let mut c = base.clone();
+                c.q[m] = Q_PILOT;
+                pilots.push((Role::Medium(m), c));
+            }
+        }
+        if auto_rays {
+            let mut c = base.clone();
+            c.forward_rays *= BUDGET_FACTOR;
+            pilots.push((Role::Rays, c));
+        }
+        if auto_samples {
+            let mut c = base.clone();
+            c.camera_samples *= BUDGET_FACTOR as u32;
+            pilots.push((Role::Samples, c));
+        }
+        Some(Self {
+            pilots,
+            auto_rays,
+            auto_samples,
+            recorded: 0,
+            first: None,
+            measures: Vec::new(),
+            choice: None,
+        })
+    }
+
+    /// Number of pilot passes (the film's first passes).
+    pub fn pilot_passes(&self) -> u64 {
+        self.pilots.len() as u64 * REPEATS
+    }
+
+    /// Pilot passes recorded so far; pass `recorded()` is the next one to record.
+    pub fn recorded(&self) -> u64 {
+        self.recorded
+    }
+
+    /// The configuration of pass `pass`: a pilot's, or the choice (None until it is made).
+    pub fn config(&self, pass: u64) -> Option<&PassConfig> {
+        match self.pilots.get((pass / REPEATS) as usize) {
+            Some((_, c)) => Some(c),
+            None => self.choice.as_ref().map(|c| &c.config),
+        }
+    }
+
+    /// The choice, once every pilot pass is recorded.
+    pub fn choice(&self) -> Option<&Choice> {
+        self.choice.as_ref()
+    }
+
+    /// Records pass `pass` (its per-pixel totals and work) if it is the next pilot pass.
+    pub fn record(&mut self, pass: u64, totals: Vec<f64>, work: Work) {
+        if pass != self.recorded || pass >= self.pilot_passes() {
+            return;
+        }
+        self.recorded += 1;
+        let Some(first) = self.first.take() else {
+            self.first = Some(totals);
+            self.measures.push(Measure {
+                variance: 0.0,
+                se: 0.0,
+                work,
+            });
+            return;
+        };
+        // Per pixel d = (x1 - x2)^2 / 2 is sigma^2 chi^2_1: E[d^2] = 3 sigma^4 and
+        // Var(d) = 2 sigma^4 = (2/3) E[d^2], which gives the sum's standard error.
+        let (mut variance, mut d2) = (0.0, 0.0);
+        for (a, b) in first.iter().zip(&totals) {
+            let d = 0.5 * (a - b) * (a - b);
+            variance += d;
+            d2 += d * d;
+        }
+        if let Some(m) = self.measures.last_mut() {
+            m.variance = variance;
+            m.se = (2.0 / 3.0 * d2).sqrt();
+            m.work = average(&m.work, &work);
+        }
+        if self.recorded == self.pilot_passes() {
+            self.choice = Some(self.choose());
+        }
+    }
+
+    fn measure(&self, role: Role) -> Option<(&PassConfig, Measure)> {
+        let i = self.pilots.iter().position(|(r, _)| *r == role)?;
+        Some((&self.pilots[i].1, *self.measures.get(i)?))
+    }
+
+    fn choose(&self) -> Choice {
+        let mut report = Vec::new();
+        let Some((base, b)) = self.measure(Role::Base) else {
+            return Choice {
+                config: self.pilots[0].1.clone(),
+                report,
+            };
+        };
+        let mut config = base.clone();
+        let (variance, cost) = self.choose_q(&mut config, b, &mut report);
+        if self.auto_rays || self.auto_samples {
+            self.choose_budgets(&mut config, b, variance / b.variance, cost, &mut report);
+        }
+        report.insert(
+            0,
+            format!(
+                "chosen from pilot passes 0..{}: q = {:?}, forward_rays = {}, camera_samples = {}",
+                self.pilot_passes(),
+                config.q,
+                config.forward_rays,
+                config.camera_samples
+            ),
+        );
+        Choice { config, report }
+    }
+
+    /// Sets the automatic media's q; returns the predicted variance and cost of a pass.
+    fn choose_q(
+        &self,
+        config: &mut PassConfig,
+        b: Measure,
+        report: &mut Vec<String>,
+    ) -> (f64, f64) {
+        let q_lo = Q_PILOT as f64;
+        let (mut media, mut fits) = (Vec::new(), Vec::new());
+        for m in 0..config.q.len() {
+            let Some((_, v)) = self.measure(Role::Medium(m)) else {
+                continue;
+            };
+            let gain = b.gain_over(&v);
+            if gain <= 0.0 {
+                report.push(format!(
+                    "q[{m}] = 1: q = {q_lo} did not lower the variance by {Z_SIGNIFICANT} \
+                     standard errors ({:.4e} vs {:.4e} +- {:.1e})",
+                    v.variance,
+                    b.variance,
+                    b.se.hypot(v.se)
+                ));
+                continue;
+            }
+            let (c1, c_lo) = (b.work.cost(), v.work.cost());
+            fits.push(QFit::from_passes(
+                b.variance,
+                b.variance - gain,
+                c1,
+                c_lo,
+                q_lo,
+            ));
+            media.push(m);
+        }
+        let (mut variance, mut cost) = (b.variance, b.work.cost());
+        if fits.is_empty() {
+            return (variance, cost);
+        }
+        let q = model::q_joint(&fits, b.variance, b.work.cost());
+        let rest = b.variance - fits.iter().map(|f| f.slope).sum::<f64>();
+        for ((m, f), q) in media.iter().zip(&fits).zip(q) {
+            config.q[*m] = q;
+            variance += f.slope * (q as f64 - 1.0);
+            cost += f.sphere_cost * (1.0 / q as f64 - 1.0);
+            report.push(format!(
+                "q[{m}] = {q:.3}: variance per pass V(q) = {:.4e} q + rest (S = (1+eps)A - B), \
+                 sphere cost c1 = {:.4e} s/q",
+                f.slope, f.sphere_cost
+            ));
+        }
+        report.push(format!(
+            "q: variance not depending on q I = {rest:.4e}, base cost c0 = {:.4e} s",
+            b.work.cost() - fits.iter().map(|f| f.sphere_cost).sum::<f64>()
+        ));
+        (variance, cost)
+    }
+
+    /// Sets the automatic budgets for a pass whose variance is `scale` times the base pilot's
+    /// and whose cost is `cost`.
+    fn choose_budgets(
+        &self,
+        config: &mut PassConfig,
+        b: Measure,
+        scale: f64,
+        cost: f64,
+        report: &mut Vec<String>,
+    ) {
+        let (s, n) = (config.camera_samples as f64, config.forward_rays as f64);
+        let k = BUDGET_FACTOR as f64;
+        // A budget whose pilot did not lower the variance significantly stays as it is: the
+        // pilots say nothing about it.
+        let gain = |role| {
+            self.measure(role)
+                .map(|(_, m)| b.gain_over(&m))
+                .filter(|g| *g > 0.0)
+        };
+        let (rays_gain, samples_gain) = (gain(Role::Rays), gain(Role::Samples));
+        let v = b.variance;
+        let split = match (rays_gain, samples_gain) {
+            (Some(gr), Some(gs)) => NoiseSplit::from_three(s, n, k, v, v - gr, v - gs),
+            (Some(gr), None) => NoiseSplit::from_forward_rays(s, n, v, k, v - gr),
+            (None, Some(gs)) => NoiseSplit::from_camera_samples(s, n, v, k, v - gs),
+            (None, None) => {
+                report.push(format!(
+                    "budgets kept (camera paths {}, forward rays {}): more of either did not \
+                     lower the variance by {Z_SIGNIFICANT} standard errors",
+                    config.camera_samples, config.forward_rays
+                ));
+                return;
+            }
+        };
+        let noise = split.scaled(scale);
+        // The base pass's cost parts, rescaled to the chosen q's cost.
+        let [paths, volumes, rays, hits] = b.work.parts();
+        let r = cost / b.work.cost().max(f64::MIN_POSITIVE);
+        let costs = CostSplit {
+            per_sample: (paths + volumes) * r / s,
+            per_ray: rays * r / n,
+            per_pair: hits * r / (s * n),
+        };
+        // The models are fitted between the pilots: search within a factor BUDGET_FACTOR^2
+        // of them, not far beyond.
+        let f = BUDGET_FACTOR * BUDGET_FACTOR;
+        let search = BudgetSearch {
+            samples: samples_gain.is_none().then_some(config.camera_samples),
+            max_samples: MAX_CAMERA_SAMPLES.min(config.camera_samples * f as u32),
+            rays: rays_gain.is_none().then_some(config.forward_rays),
+            rays_range: (
+                RAYS_RANGE.0.max(config.forward_rays / f),
+                RAYS_RANGE.1.min(config.forward_rays * f),
+            ),
+        };
+        (config.camera_samples, config.forward_rays) = model::budgets(&noise, &costs, &search);
+        report.push(format!(
+            "budgets: camera paths {} and forward rays {}: variance per pass = {:.4e}/paths + \
+             {:.4e}/rays + {:.4e}/(paths x rays), cost = {:.4e} paths + {:.4e} rays + {:.4e} \
+             paths x rays s",
+            config.camera_samples,
+            config.forward_rays,
+            noise.camera,
+            noise.forward,
+            noise.pair,
+            costs.per_sample,
+            costs.per_ray,
+            costs.per_pair
+        ));
+    }
+}
+
+fn average(a: &Work, b: &Work) -> Work {
+    Work {
+        paths: (a.paths + b.paths) / 2,
+        volumes: (a.volumes + b.volumes) / 2,
+        rays: (a.rays + b.rays) / 2,
+        hits: (a.hits + b.hits) / 2,
+    }
+}
+
+/// Per pixel, the sum over layers and bins of a pass's values (`data` is `[layer][pixel][bin]`).
+pub fn pixel_totals(data: &[f32], pixels: usize, n: usize) -> Vec<f64> {
+    let mut out = vec![0.0f64; pixels];
+    for layer in data.chunks_exact(pixels * n) {
+        for (t, px) in out.iter_mut().zip(layer.chunks_exact(n)) {
+            *t += px.iter().map(|&v| v as f64).sum::<f64>();
+        }
+    }
+    out
+}

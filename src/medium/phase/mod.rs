@@ -135,7 +135,12 @@ impl Phase {
                 }
                 s
             }
-            _ => Spectrum::splat(self.g(), n),
+            Phase::Tabulated(_)
+            | Phase::Hg(_)
+            | Phase::TwoTermHg(_)
+            | Phase::Rayleigh(_)
+            | Phase::Draine(_)
+            | Phase::HgDraine(_) => Spectrum::splat(self.g(), n),
         }
     }
 
@@ -164,7 +169,12 @@ impl Phase {
     pub fn eval_bins(&self, cos: f32, n: usize) -> Spectrum {
         match self {
             Phase::Tabulated(t) if t.lanes() > 1 => t.eval_bins(cos, n),
-            _ => Spectrum::splat(self.eval(cos), n),
+            Phase::Tabulated(_)
+            | Phase::Hg(_)
+            | Phase::TwoTermHg(_)
+            | Phase::Rayleigh(_)
+            | Phase::Draine(_)
+            | Phase::HgDraine(_) => Spectrum::splat(self.eval(cos), n),
         }
     }
 
@@ -191,7 +201,11 @@ impl Phase {
         match self {
             // HG keeps its own routine so that HG media render bit for bit as before.
             Phase::Hg(p) => p.sample_dir(w, xi1, xi2),
-            _ => around(w, self.sample_cos(xi1), xi2),
+            Phase::TwoTermHg(_)
+            | Phase::Rayleigh(_)
+            | Phase::Draine(_)
+            | Phase::HgDraine(_)
+            | Phase::Tabulated(_) => around(w, self.sample_cos(xi1), xi2),
         }
     }
 

@@ -79,6 +79,7 @@ impl FilmDesc {
             spectral_layers: self.spectral_layers,
             noise_layer: self.noise_layer,
             cat: self.adaptation,
+            attributes: Vec::new(),
         }
     }
 }

@@ -232,7 +232,9 @@ pub fn scale_to_flux(
         return Err(b.source.invalid(
             &at,
             format!(
-                "{lm} lm from {area} m² with this `emit` spectrum needs a radiance of {max:e}                  W/(m^2 sr nm), outside the (0, {MAX_RADIANCE:e}] accepted (the spectrum must                  be visible and the film's sums must not overflow)"
+                "{lm} lm from {area} m² with this `emit` spectrum needs a radiance of {max:e} \
+                 W/(m^2 sr nm), outside the (0, {MAX_RADIANCE:e}] accepted (the spectrum must \
+                 be visible and the film's sums must not overflow)"
             ),
         ));
     }
