@@ -60,7 +60,7 @@ pub fn light_pass(
     let total = integrator.forward_rays;
     let chunk = chunk_size(total);
     let workers = rayon::current_num_threads().max(1) as u64;
-    let (pixels, n) = (buf.pixels, buf.n);
+    let empty = ChunkSplats::for_buffer(buf);
     let shared = Shared {
         order: Mutex::new(Order {
             next_add: 0,
@@ -80,7 +80,7 @@ pub fn light_pass(
                 // A worker that panics never adds its chunk: wake the others so that they stop
                 // instead of waiting for it forever (the panic then reaches the caller).
                 let _wake = WakeOnPanic(&shared);
-                while let Some((c, mut sink)) = shared.next(stop, pixels, n) {
+                while let Some((c, mut sink)) = shared.next(stop, &empty) {
                     let mut rng =
                         rng::stream(job.seed, job.pass, Domain::Light, (job.tile << 40) | c);
                     let mut tracer = ForwardTracer {
@@ -94,6 +94,7 @@ pub fn light_pass(
                         next_origin: 0,
                         flux: Spectrum::ZERO,
                         flux0: 0.0,
+                        light: 0,
                         class: CLASS_C,
                         deposits: true,
                     };
@@ -122,9 +123,9 @@ struct Shared<'b> {
 }
 
 impl Shared<'_> {
-    /// The next chunk to trace and a splat log for it, or None when all are taken or the pass
+    /// The next chunk to trace and a splat log for it (a copy of `empty`), or None when all are taken or the pass
     /// is aborted (`stop` set).
-    fn next(&self, stop: &AtomicBool, pixels: usize, n: usize) -> Option<(u64, ChunkSplats)> {
+    fn next(&self, stop: &AtomicBool, empty: &ChunkSplats) -> Option<(u64, ChunkSplats)> {
         if stop.load(Ordering::Relaxed) {
             self.abort();
             return None;
@@ -140,7 +141,7 @@ impl Shared<'_> {
             }
             o = self.added.wait(o).unwrap_or_else(PoisonError::into_inner);
         }
-        let sink = o.spare.pop().unwrap_or_else(|| ChunkSplats::new(pixels, n));
+        let sink = o.spare.pop().unwrap_or_else(|| empty.empty_like());
         Some((c, sink))
     }
 
@@ -207,6 +208,8 @@ struct ForwardTracer<'a> {
     /// The current ray's flux, its largest bin at emission, and its class (method note 6).
     flux: Spectrum,
     flux0: f32,
+    /// The light that emitted the ray (its index in the scene's `LightSet`).
+    light: u32,
     class: u8,
     /// Whether the ray deposits in volumes and surface spheres: false on the first flight of a
     /// light whose direct light next-event estimation handles, until its first scattering or
@@ -229,6 +232,7 @@ impl ForwardTracer<'_> {
         };
         self.flux = es.flux;
         self.flux0 = es.flux.max_value();
+        self.light = light;
         if self.flux0.is_nan() || self.flux0 <= 0.0 || !es.flux.is_finite() {
             return;
         }
@@ -289,9 +293,10 @@ impl ForwardTracer<'_> {
             let f = scene.materials[mat as usize].eval_diffuse(rec.wo.decode(), wi, &at);
             let factor = f * *flux * (inv_area * rec.scale);
             let w = gather.throughput(rec.throughput);
-            let norm = self.norm;
+            let (norm, light) = (self.norm, Some(self.light));
+            let pixel = rec.pixel as usize;
             self.buf
-                .splat(Layer::Surface, rec.pixel as usize, w, &factor.0[..n], norm);
+                .splat_from(Layer::Surface, pixel, light, w, &factor.0[..n], norm);
         });
     }
 
@@ -328,7 +333,7 @@ impl ForwardTracer<'_> {
         let n = scene.grid.n;
         let gather = self.gather;
         let radius = gather.radius;
-        let (norm, class) = (self.norm, self.class);
+        let (norm, class, light) = (self.norm, self.class, Some(self.light));
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
         // A grey flight's flux does not change along the segment: skip its survival weights.
@@ -351,7 +356,8 @@ impl ForwardTracer<'_> {
             let med = &scene.media[seg.medium as usize];
             let w = gather.throughput(seg.throughput);
             if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
-                buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
+                let pixel = seg.pixel as usize;
+                buf.splat_from(Layer::Medium, pixel, light, w, &factor.0[..n], norm);
             }
         });
     }

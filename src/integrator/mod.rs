@@ -6,7 +6,9 @@
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
 mod auto;
+mod by_light;
 mod camera_pass;
+mod camera_path;
 pub mod direct;
 pub mod estimator;
 mod exp;

@@ -8,7 +8,7 @@ use super::Integrator;
 use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
-use crate::film::{Film, PassBuffer, SpectralImage};
+use crate::film::{Film, SpectralImage};
 use crate::world::Scene;
 
 /// How much to render.
@@ -50,7 +50,13 @@ impl<'a> Renderer<'a> {
         Self {
             scene,
             seed,
-            film: Film::new(w as usize, h as usize, scene.grid.clone()),
+            film: Film::with_extras(
+                w as usize,
+                h as usize,
+                scene.grid.clone(),
+                0,
+                scene.film_extras.clone(),
+            ),
             radius: integrator.radius.at(0),
             integrator,
             stats: Stats::default(),
@@ -68,7 +74,7 @@ impl<'a> Renderer<'a> {
 
     /// A renderer that continues `film` (restored from a checkpoint): the next pass is
     /// `film.end()`, rendered exactly as an uninterrupted run would render it. Fails when the
-    /// film's size or spectral grid is not the scene's.
+    /// film's size, spectral grid, sensors or light layers are not the scene's.
     pub fn resume(
         scene: &'a Scene,
         integrator: Integrator,
@@ -81,6 +87,9 @@ impl<'a> Renderer<'a> {
                 "the film is {}x{} pixels with {} bins, the scene renders {}x{} with {}",
                 film.width, film.height, film.grid.n, r.film.width, r.film.height, r.film.grid.n
             ));
+        }
+        if film.extras != r.film.extras {
+            return Err("the film keeps other sensors or light layers than the scene".into());
         }
         r.radius = r.integrator.radius.at(film.end());
         r.film = film;
@@ -124,8 +133,8 @@ impl<'a> Renderer<'a> {
         let (scene, integrator) = (self.scene, &self.integrator);
         let pass = self.film.end();
         self.radius = integrator.radius.at(pass);
-        let (w, h) = scene.camera.resolution();
-        let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
+        let h = scene.camera.resolution().1;
+        let mut buf = self.film.pass_buffer();
         let spp = integrator.camera_samples as f32;
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
@@ -139,6 +148,7 @@ impl<'a> Renderer<'a> {
                 radius: self.radius,
                 first_row: row,
                 budget_bytes: budget,
+                light_layers: buf.lights > 0,
             };
             let Some((mut out, next)) = camera_pass(scene, integrator, &job, stop) else {
                 return false;
