@@ -8,6 +8,7 @@ use super::Integrator;
 use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
+use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
 use crate::film::{Film, SpectralImage};
 use crate::world::Scene;
 
@@ -26,6 +27,8 @@ pub struct Stats {
     pub surface_records: u64,
     pub volume_records: u64,
     pub forward_rays: u64,
+    /// Paths traced from illuminance sensors.
+    pub sensor_paths: u64,
     pub peak_gather_bytes: usize,
     pub camera_seconds: f64,
     pub build_seconds: f64,
@@ -41,6 +44,8 @@ pub struct Renderer<'a> {
     seed: u64,
     film: Film,
     radius: f32,
+    /// The scene's illuminance sensors.
+    sensors: Vec<SensorPoint>,
     pub stats: Stats,
 }
 
@@ -58,6 +63,7 @@ impl<'a> Renderer<'a> {
                 scene.film_extras.clone(),
             ),
             radius: integrator.radius.at(0),
+            sensors: sensor_points(scene),
             integrator,
             stats: Stats::default(),
         }
@@ -138,6 +144,10 @@ impl<'a> Renderer<'a> {
         let spp = integrator.camera_samples as f32;
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
+        let Some(sensors) = self.sensor_pass(pass, stop) else {
+            return false;
+        };
+        let (scene, integrator) = (self.scene, &self.integrator);
         let mut row = 0;
         let mut tile = 0u64;
         while row < h {
@@ -164,6 +174,8 @@ impl<'a> Renderer<'a> {
                 pass,
                 tile,
                 norm,
+                // The sensor paths' records join the first tile's light pass only.
+                sensors: sensors.as_ref().filter(|_| tile == 0).map(|s| &s.gather),
             };
             if !light_pass(scene, integrator, &gather, &light, &mut buf, stop) {
                 return false;
@@ -179,8 +191,28 @@ impl<'a> Renderer<'a> {
             row = next;
             tile += 1;
         }
+        if let Some(s) = &sensors {
+            s.splat(&mut buf, integrator);
+        }
         self.film.add_pass(&buf);
         true
+    }
+
+    /// The sensor paths of pass `pass` (Some(None) without illuminance sensors); None when
+    /// `stop` was set.
+    fn sensor_pass(&mut self, pass: u64, stop: &AtomicBool) -> Option<Option<SensorPass>> {
+        if self.sensors.is_empty() {
+            return Some(None);
+        }
+        let job = SensorJob {
+            seed: self.seed,
+            pass,
+            radius: self.radius,
+            points: &self.sensors,
+        };
+        let s = SensorPass::new(self.scene, &self.integrator, &job, stop)?;
+        self.stats.sensor_paths += s.out.paths;
+        Some(Some(s))
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.

@@ -26,13 +26,13 @@ pub enum Part {
 }
 
 /// The power heuristic (exponent 2) for a sample of density `a` against another strategy's `b`.
-fn power(a: f32, b: f32) -> f32 {
+pub(super) fn power(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
 /// The solid-angle density of a surface anchor's sample seen from a point, for MIS.
-fn solid_angle_pdf(anchor: &Anchor, arrival: &Arrival) -> Option<f32> {
+pub(super) fn solid_angle_pdf(anchor: &Anchor, arrival: &Arrival) -> Option<f32> {
     match anchor {
         Anchor::Surface {
             normal, pdf_area, ..
