@@ -134,3 +134,29 @@ fn light_layers_sum_to_the_image_and_match_single_light_renders() {
         }
     }
 }
+
+/// With light layers and an illuminance sensor in the fog, the same seed gives the same film
+/// (image, layers, sensor sums) with 1 and 2 threads, in both ways of estimating direct light.
+#[test]
+fn layers_and_sensors_are_deterministic_across_thread_counts() {
+    for direct in ["nee", "photons"] {
+        let t = text([true; 3], direct)
+            + "[[sensors]]\ntype = \"illuminance\"\nposition = [0.2, 0.5, 0.3]\n\
+               normal = [0, 1, 0]\n";
+        let s = scene(&t, &["integrator.sensor_paths=100"]);
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool");
+            pool.install(|| {
+                let mut r = s.renderer(9);
+                r.run(brume::integrator::Budget::Passes(2), |_, _| {});
+                r.into_film()
+            })
+        };
+        let (a, b) = (run(1), run(2));
+        assert!(a.sensor_sum.iter().any(|v| *v != 0) && a.light_sum.iter().any(|v| *v != 0));
+        assert!(a == b, "{direct}: films differ between 1 and 2 threads");
+    }
+}
