@@ -706,3 +706,6 @@ fn per_bin_phase_single_scattering() {
         );
     }
 }
+
+#[path = "engine_media/sensors.rs"]
+mod sensors;

@@ -564,3 +564,9 @@ spectrum = 1.0
         "with the coat's highlight {expected:.4e}; photons (diffuse base only) {diffuse_only:.4e}"
     );
 }
+
+#[path = "engine_surfaces/sensors.rs"]
+mod sensors;
+
+#[path = "engine_surfaces/layers.rs"]
+mod layers;

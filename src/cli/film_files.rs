@@ -154,8 +154,7 @@ pub fn report_extras(film: &Film, quiet: bool) {
         .filter(|r| r.spectrum.iter().all(|v| *v == 0.0))
     {
         eprintln!(
-            "brume: warning: sensor {} read exactly 0 in every pass: no light reached it, or \
-             this build does not estimate {} sensors",
+            "brume: warning: sensor {} ({}) read exactly 0 in every pass: no light reached it",
             r.name,
             r.kind.name()
         );

@@ -38,6 +38,11 @@ impl ChunkSplats {
         Self::with_extras(buf.pixels, buf.n, buf.lights, buf.sensors)
     }
 
+    /// An empty log of this one's shape.
+    pub fn empty_like(&self) -> Self {
+        Self::with_extras(self.pixels, self.n, self.lights, self.sensors)
+    }
+
     /// A log for a pass with `lights` light layers and `sensors` sensors.
     pub fn with_extras(pixels: usize, n: usize, lights: usize, sensors: usize) -> Self {
         Self {

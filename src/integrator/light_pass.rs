@@ -2,20 +2,20 @@
 //! forward segment in a medium is tested against the integration volumes and every diffuse
 //! surface hit against the surface spheres.
 
-use std::collections::BTreeMap;
 use std::f32::consts::PI;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 
 use glam::Vec3;
 use rand::Rng as _;
 
 use super::Integrator;
+use super::chunk_order::{Shared, WakeOnPanic};
 use super::estimator::{Estimator, ForwardSegment, VolumeEstimator};
 use super::gather::Gather;
 use super::path::{self, MediumStep, PathStep, SurfaceStep};
 use super::record::{CLASS_C, CLASS_D};
 use super::rng::{self, Domain, Rng};
+use super::sensors::SensorGather;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
@@ -32,7 +32,7 @@ pub fn chunk_size(total: u64) -> u64 {
 }
 
 /// Which forward rays a light pass traces and how it weighs them.
-pub struct LightJob {
+pub struct LightJob<'a> {
     pub seed: u64,
     pub pass: u64,
     /// Numbers the gather tiles of a pass (0 unless a memory budget split it), keeping their
@@ -43,6 +43,8 @@ pub struct LightJob {
     /// Counts the gather candidates the pass's forward rays met (work, for automatic
     /// settings; a sum, so the same whatever the thread count).
     pub hits: AtomicU64,
+    /// The sensors' records and discs (the first tile of a pass with illuminance sensors).
+    pub sensors: Option<&'a SensorGather>,
 }
 
 /// Traces the pass's forward rays against `gather` into `buf`. Returns false, leaving `buf`
@@ -63,33 +65,22 @@ pub fn light_pass(
     let total = integrator.forward_rays;
     let chunk = chunk_size(total);
     let workers = rayon::current_num_threads().max(1) as u64;
-    let (pixels, n) = (buf.pixels, buf.n);
-    let shared = Shared {
-        order: Mutex::new(Order {
-            next_add: 0,
-            finished: BTreeMap::new(),
-            spare: Vec::new(),
-            buf,
-        }),
-        added: Condvar::new(),
-        next_chunk: AtomicU64::new(0),
-        aborted: AtomicBool::new(false),
-        chunks: total.div_ceil(chunk),
-        window: 2 * workers,
-    };
+    let empty = ChunkSplats::for_buffer(buf);
+    let shared = Shared::new(buf, total.div_ceil(chunk), 2 * workers);
     rayon::scope(|s| {
-        for _ in 0..workers.min(shared.chunks) {
+        for _ in 0..workers.min(shared.chunks()) {
             s.spawn(|_| {
                 // A worker that panics never adds its chunk: wake the others so that they stop
                 // instead of waiting for it forever (the panic then reaches the caller).
                 let _wake = WakeOnPanic(&shared);
-                while let Some((c, mut sink)) = shared.next(stop, pixels, n) {
+                while let Some((c, mut sink)) = shared.next(stop, &empty) {
                     let mut rng =
                         rng::stream(job.seed, job.pass, Domain::Light, (job.tile << 40) | c);
                     let mut tracer = ForwardTracer {
                         scene,
                         integrator,
                         gather,
+                        sensors: job.sensors,
                         norm: job.norm,
                         buf: &mut sink,
                         // NaN bits never equal a real origin's.
@@ -97,9 +88,11 @@ pub fn light_pass(
                         next_origin: 0,
                         flux: Spectrum::ZERO,
                         flux0: 0.0,
+                        light: 0,
                         class: CLASS_C,
                         deposits: true,
                         hits: 0,
+                        to_discs: false,
                     };
                     for _ in 0..chunk.min(total - c * chunk) {
                         tracer.trace(&mut rng);
@@ -110,93 +103,7 @@ pub fn light_pass(
             });
         }
     });
-    !shared.aborted.load(Ordering::Relaxed)
-}
-
-/// What the workers of one light pass share.
-struct Shared<'b> {
-    order: Mutex<Order<'b>>,
-    /// Signalled whenever chunks were added (or the pass aborted).
-    added: Condvar,
-    next_chunk: AtomicU64,
-    /// Set on an interrupt or a worker's panic: every worker stops.
-    aborted: AtomicBool,
-    chunks: u64,
-    /// How far a worker may run ahead of the oldest unfinished chunk.
-    window: u64,
-}
-
-impl Shared<'_> {
-    /// The next chunk to trace and a splat log for it, or None when all are taken or the pass
-    /// is aborted (`stop` set).
-    fn next(&self, stop: &AtomicBool, pixels: usize, n: usize) -> Option<(u64, ChunkSplats)> {
-        if stop.load(Ordering::Relaxed) {
-            self.abort();
-            return None;
-        }
-        let c = self.next_chunk.fetch_add(1, Ordering::Relaxed);
-        if c >= self.chunks {
-            return None;
-        }
-        let mut o = lock(&self.order);
-        while c >= o.next_add + self.window {
-            if self.aborted.load(Ordering::Relaxed) {
-                return None;
-            }
-            o = self.added.wait(o).unwrap_or_else(PoisonError::into_inner);
-        }
-        let sink = o.spare.pop().unwrap_or_else(|| ChunkSplats::new(pixels, n));
-        Some((c, sink))
-    }
-
-    /// Hands chunk `c` over; it is added once every earlier chunk is.
-    fn finish(&self, c: u64, sink: ChunkSplats) {
-        let mut o = lock(&self.order);
-        o.finished.insert(c, sink);
-        o.add_ready();
-        self.added.notify_all();
-    }
-
-    fn abort(&self) {
-        // Under the lock, so no waiter can miss the flag between its check and its wait.
-        let _o = lock(&self.order);
-        self.aborted.store(true, Ordering::Relaxed);
-        self.added.notify_all();
-    }
-}
-
-/// The ordered hand-over of finished chunks into the pass buffer.
-struct Order<'b> {
-    next_add: u64,
-    finished: BTreeMap<u64, ChunkSplats>,
-    spare: Vec<ChunkSplats>,
-    buf: &'b mut PassBuffer,
-}
-
-impl Order<'_> {
-    fn add_ready(&mut self) {
-        while let Some(mut sink) = self.finished.remove(&self.next_add) {
-            sink.drain_into(self.buf);
-            self.spare.push(sink);
-            self.next_add += 1;
-        }
-    }
-}
-
-struct WakeOnPanic<'a, 'b>(&'a Shared<'b>);
-
-impl Drop for WakeOnPanic<'_, '_> {
-    fn drop(&mut self) {
-        if std::thread::panicking() {
-            self.0.abort();
-        }
-    }
-}
-
-/// A poisoned lock only means another worker panicked; the panic reaches the caller through
-/// the scope anyway, so the data is still fine to use here.
-fn lock<'m, 'b>(m: &'m Mutex<Order<'b>>) -> MutexGuard<'m, Order<'b>> {
-    m.lock().unwrap_or_else(PoisonError::into_inner)
+    !shared.aborted()
 }
 
 /// One worker's forward rays: the state of the ray being traced and where its splats go.
@@ -204,6 +111,7 @@ struct ForwardTracer<'a> {
     scene: &'a Scene,
     integrator: &'a Integrator,
     gather: &'a Gather,
+    sensors: Option<&'a SensorGather>,
     norm: f32,
     buf: &'a mut ChunkSplats,
     /// Recent emission origins (as bits) and their media.
@@ -212,6 +120,8 @@ struct ForwardTracer<'a> {
     /// The current ray's flux, its largest bin at emission, and its class (method note 6).
     flux: Spectrum,
     flux0: f32,
+    /// The light that emitted the ray (its index in the scene's `LightSet`).
+    light: u32,
     class: u8,
     /// Whether the ray deposits in volumes and surface spheres: false on the first flight of a
     /// light whose direct light next-event estimation handles, until its first scattering or
@@ -219,6 +129,9 @@ struct ForwardTracer<'a> {
     deposits: bool,
     /// Gather candidates met (surface spheres and volumes passed to their test).
     hits: u64,
+    /// Whether the ray is on its first flight from a light whose direct light the sensors'
+    /// discs gather (`SensorGather::disc_gathers`).
+    to_discs: bool,
 }
 
 impl ForwardTracer<'_> {
@@ -236,6 +149,7 @@ impl ForwardTracer<'_> {
         };
         self.flux = es.flux;
         self.flux0 = es.flux.max_value();
+        self.light = light;
         if self.flux0.is_nan() || self.flux0 <= 0.0 || !es.flux.is_finite() {
             return;
         }
@@ -245,6 +159,9 @@ impl ForwardTracer<'_> {
             .direct
             .as_ref()
             .is_some_and(|d| d.handles(light));
+        self.to_discs = self
+            .sensors
+            .is_some_and(|s| s.disc_gathers(scene, self.integrator, light));
         let medium = self.medium_at(es.ray.o);
         let max_depth = self.integrator.settings.max_depth;
         path::trace(scene, max_depth, es.ray, medium, self, rng);
@@ -263,10 +180,22 @@ impl ForwardTracer<'_> {
         m
     }
 
+    /// Gathers a forward ray arriving along `v` at a diffuse surface `hit` into the surface
+    /// spheres there (the image's, then the sensor paths').
     fn gather_surfaces(&mut self, hit: &Hit, v: Vec3) {
+        let image = Target::Image { light: self.light };
+        self.gather_surfaces_in((self.gather, image), hit, v);
+        if let Some(s) = self.sensors {
+            let target = Target::Sensors {
+                scale: s.path_scale,
+            };
+            self.gather_surfaces_in((&s.gather, target), hit, v);
+        }
+    }
+
+    fn gather_surfaces_in(&mut self, (gather, target): (&Gather, Target), hit: &Hit, v: Vec3) {
         let scene = self.scene;
         let n = scene.grid.n;
-        let gather = self.gather;
         let flux = &self.flux;
         let wi = -v;
         let ng = if hit.ng.dot(wi) >= 0.0 {
@@ -298,15 +227,15 @@ impl ForwardTracer<'_> {
             let f = scene.materials[mat as usize].eval_diffuse(rec.wo.decode(), wi, &at);
             let factor = f * *flux * (inv_area * rec.scale);
             let w = gather.throughput(rec.throughput);
-            let norm = self.norm;
-            self.buf
-                .splat(Layer::Surface, rec.pixel as usize, w, &factor.0[..n], norm);
+            let (buf, norm) = (&mut *self.buf, self.norm);
+            target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
         });
         self.hits += hits;
     }
 
     /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
-    /// the volumes it meets; `flight` is the segment's flight in a medium.
+    /// the volumes it meets (the image's, then the sensor paths'); `flight` is the segment's
+    /// flight in a medium.
     fn gather_volumes(
         &mut self,
         m: Option<u32>,
@@ -314,21 +243,40 @@ impl ForwardTracer<'_> {
         len: f32,
         flight: Option<&ForwardFlight>,
     ) {
-        let integrator = self.integrator;
-        match &integrator.estimator {
-            Estimator::Spheres(e) => self.gather_with(e, m, ray, len, flight),
-            Estimator::Cylinder(e) => self.gather_with(e, m, ray, len, flight),
-            Estimator::TruncatedCylinder(e) => self.gather_with(e, m, ray, len, flight),
-            Estimator::LongCylinder(e) => self.gather_with(e, m, ray, len, flight),
+        let image = Target::Image { light: self.light };
+        self.gather_volumes_in((self.gather, image), m, ray, len, flight);
+        if let Some(s) = self.sensors {
+            let target = Target::Sensors {
+                scale: s.path_scale,
+            };
+            self.gather_volumes_in((&s.gather, target), m, ray, len, flight);
         }
     }
 
-    /// `gather_volumes` for one estimator. Volumes of another medium count too when their
+    fn gather_volumes_in(
+        &mut self,
+        into: (&Gather, Target),
+        m: Option<u32>,
+        ray: &Ray,
+        len: f32,
+        flight: Option<&ForwardFlight>,
+    ) {
+        let integrator = self.integrator;
+        match &integrator.estimator {
+            Estimator::Spheres(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::Cylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::TruncatedCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::LongCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+        }
+    }
+
+    /// `gather_volumes_in` for one estimator. Volumes of another medium count too when their
     /// medium is bounded only by index-matched boundaries, across which the radiance field is
     /// continuous (method note 8).
     fn gather_with<E: VolumeEstimator>(
         &mut self,
         e: &E,
+        (gather, target): (&Gather, Target),
         m: Option<u32>,
         ray: &Ray,
         len: f32,
@@ -336,7 +284,6 @@ impl ForwardTracer<'_> {
     ) {
         let scene = self.scene;
         let n = scene.grid.n;
-        let gather = self.gather;
         let radius = gather.radius;
         let (norm, class) = (self.norm, self.class);
         let buf = &mut *self.buf;
@@ -363,10 +310,60 @@ impl ForwardTracer<'_> {
             let med = &scene.media[seg.medium as usize];
             let w = gather.throughput(seg.throughput);
             if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
-                buf.splat(Layer::Medium, seg.pixel as usize, w, &factor.0[..n], norm);
+                target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
             }
         });
         self.hits += hits;
+    }
+
+    /// Adds the flux of the forward segment `ray` up to `len` (a flight's flux where it crosses)
+    /// to the sensors whose discs it crosses (`SensorGather::crossings`).
+    fn cross_discs(&mut self, ray: &Ray, len: f32, flight: Option<&ForwardFlight>) {
+        let Some(s) = self.sensors else { return };
+        let n = self.scene.grid.n;
+        let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
+        let (buf, flux) = (&mut *self.buf, &self.flux);
+        s.crossings(ray.o, ray.d, len, |k, t| {
+            let at = flight.map_or(*flux, |f| f.flux_at(flux, t));
+            buf.splat_sensor(k as usize, &at.0[..n], s.disc_scale);
+        });
+    }
+}
+
+/// Where a gather structure's splats go.
+#[derive(Clone, Copy)]
+enum Target {
+    /// The image, and the layer of the light the forward ray came from.
+    Image { light: u32 },
+    /// The sensors' slots (the sensor paths' records name a sensor as their pixel), with the
+    /// pixel scale times `scale`.
+    Sensors { scale: f32 },
+}
+
+impl Target {
+    /// Adds the sample `w * f * norm` to a pixel of record `pixel` (see `Target`).
+    #[inline]
+    fn splat(
+        self,
+        buf: &mut ChunkSplats,
+        layer: Layer,
+        pixel: u32,
+        w: &[f32],
+        f: &[f32],
+        norm: f32,
+    ) {
+        match self {
+            Target::Image { light } => {
+                buf.splat_from(layer, pixel as usize, Some(light), w, f, norm);
+            }
+            Target::Sensors { scale } => {
+                let mut v = Spectrum::ZERO;
+                for ((v, w), f) in v.0.iter_mut().zip(w).zip(f) {
+                    *v = w * f;
+                }
+                buf.splat_sensor(pixel as usize, &v.0[..f.len()], norm * scale);
+            }
+        }
     }
 }
 
@@ -385,6 +382,9 @@ impl PathStep for ForwardTracer<'_> {
         if self.deposits {
             self.gather_volumes(Some(m), ray, reach, Some(&flight));
         }
+        if self.to_discs {
+            self.cross_discs(ray, flight.end(), Some(&flight));
+        }
         match flight.finish(med, &mut self.flux) {
             FlightEnd::Escaped => MediumStep::Reached,
             FlightEnd::Killed { .. } => MediumStep::Ended,
@@ -394,6 +394,7 @@ impl PathStep for ForwardTracer<'_> {
 
     fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
         self.deposits = true;
+        self.to_discs = false;
         if !self.roulette(depth, rng) {
             return None;
         }
@@ -409,11 +410,14 @@ impl PathStep for ForwardTracer<'_> {
     }
 
     fn vacuum(&mut self, ray: &Ray, hit: Option<&Hit>) {
+        let len = || hit.map_or_else(|| self.scene.world_exit(ray), |h| h.t);
         if self.scene.open_media && self.deposits {
             // Integration volumes poking out of index-matched boundaries still see the forward
             // rays that pass their outside part (method note 8).
-            let len = hit.map_or_else(|| self.scene.world_exit(ray), |h| h.t);
-            self.gather_volumes(None, ray, len, None);
+            self.gather_volumes(None, ray, len(), None);
+        }
+        if self.to_discs {
+            self.cross_discs(ray, len(), None);
         }
     }
 
@@ -428,6 +432,7 @@ impl PathStep for ForwardTracer<'_> {
             self.gather_surfaces(hit, ray.d);
         }
         self.deposits = true;
+        self.to_discs = false;
         let u = Vec3::new(rng.random(), rng.random(), rng.random());
         let Some(s) = material.sample(wo, hit, u) else {
             return SurfaceStep::Stop;

@@ -6,7 +6,10 @@
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
 pub mod auto;
+mod by_light;
 mod camera_pass;
+mod camera_path;
+mod chunk_order;
 pub mod direct;
 pub mod estimator;
 mod exp;
@@ -19,6 +22,7 @@ mod path;
 pub mod radius;
 pub mod record;
 mod rng;
+mod sensors;
 pub mod setting;
 pub mod settings;
 mod throughput;

@@ -9,6 +9,7 @@ use super::auto::{Choice, Tuner, Work, pixel_totals};
 use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
+use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
 use crate::film::{Film, PassBuffer, SpectralImage};
 use crate::world::Scene;
 
@@ -29,6 +30,8 @@ pub struct Stats {
     pub forward_rays: u64,
     /// Gather candidates the forward rays met (surface spheres and volumes tested).
     pub gather_hits: u64,
+    /// Paths traced from illuminance sensors.
+    pub sensor_paths: u64,
     pub peak_gather_bytes: usize,
     pub camera_seconds: f64,
     pub build_seconds: f64,
@@ -49,6 +52,8 @@ pub struct Renderer<'a> {
     radius: f32,
     /// Chooses the `"auto"` settings from pilot passes (None when there are none).
     tuner: Option<Tuner>,
+    /// The scene's illuminance sensors.
+    sensors: Vec<SensorPoint>,
     pub stats: Stats,
 }
 
@@ -58,13 +63,20 @@ impl<'a> Renderer<'a> {
         Self {
             scene,
             seed,
-            film: Film::new(w as usize, h as usize, scene.grid.clone()),
+            film: Film::with_extras(
+                w as usize,
+                h as usize,
+                scene.grid.clone(),
+                0,
+                scene.film_extras.clone(),
+            ),
             radius: integrator.radius.at(0),
             tuner: Tuner::new(
                 &integrator.settings,
                 scene.media.len(),
                 integrator.pass_config(),
             ),
+            sensors: sensor_points(scene),
             integrator,
             stats: Stats::default(),
         }
@@ -81,7 +93,7 @@ impl<'a> Renderer<'a> {
 
     /// A renderer that continues `film` (restored from a checkpoint): the next pass is
     /// `film.end()`, rendered exactly as an uninterrupted run would render it. Fails when the
-    /// film's size or spectral grid is not the scene's.
+    /// film's size, spectral grid, sensors or light layers are not the scene's.
     pub fn resume(
         scene: &'a Scene,
         integrator: Integrator,
@@ -94,6 +106,9 @@ impl<'a> Renderer<'a> {
                 "the film is {}x{} pixels with {} bins, the scene renders {}x{} with {}",
                 film.width, film.height, film.grid.n, r.film.width, r.film.height, r.film.grid.n
             ));
+        }
+        if film.extras != r.film.extras {
+            return Err("the film keeps other sensors or light layers than the scene".into());
         }
         r.radius = r.integrator.radius.at(film.end());
         r.film = film;
@@ -199,12 +214,14 @@ impl<'a> Renderer<'a> {
     fn render_into(&mut self, pass: u64, stop: &AtomicBool) -> Option<(PassBuffer, Work)> {
         let (scene, integrator) = (self.scene, &self.integrator);
         self.radius = integrator.radius.at(pass);
-        let (w, h) = scene.camera.resolution();
-        let mut buf = PassBuffer::new(w as usize * h as usize, scene.grid.n);
+        let h = scene.camera.resolution().1;
+        let mut buf = self.film.pass_buffer();
         let spp = integrator.camera_samples as f32;
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
         let mut work = Work::default();
+        let sensors = self.sensor_pass(pass, stop)?;
+        let (scene, integrator) = (self.scene, &self.integrator);
         let mut row = 0;
         let mut tile = 0u64;
         while row < h {
@@ -215,6 +232,7 @@ impl<'a> Renderer<'a> {
                 radius: self.radius,
                 first_row: row,
                 budget_bytes: budget,
+                light_layers: buf.lights > 0,
             };
             let (mut out, next) = camera_pass(scene, integrator, &job, stop)?;
             let t1 = Instant::now();
@@ -230,6 +248,8 @@ impl<'a> Renderer<'a> {
                 tile,
                 norm,
                 hits: AtomicU64::new(0),
+                // The sensor paths' records join the first tile's light pass only.
+                sensors: sensors.as_ref().filter(|_| tile == 0).map(|s| &s.gather),
             };
             if !light_pass(scene, integrator, &gather, &light, &mut buf, stop) {
                 return None;
@@ -249,7 +269,27 @@ impl<'a> Renderer<'a> {
             row = next;
             tile += 1;
         }
+        if let Some(s) = &sensors {
+            s.splat(&mut buf, integrator);
+        }
         Some((buf, work))
+    }
+
+    /// The sensor paths of pass `pass` (Some(None) without illuminance sensors); None when
+    /// `stop` was set.
+    fn sensor_pass(&mut self, pass: u64, stop: &AtomicBool) -> Option<Option<SensorPass>> {
+        if self.sensors.is_empty() {
+            return Some(None);
+        }
+        let job = SensorJob {
+            seed: self.seed,
+            pass,
+            radius: self.radius,
+            points: &self.sensors,
+        };
+        let s = SensorPass::new(self.scene, &self.integrator, &job, stop)?;
+        self.stats.sensor_paths += s.out.paths;
+        Some(Some(s))
     }
 
     /// Renders until the budget is spent, calling `progress(passes_done, seconds)` after each pass.

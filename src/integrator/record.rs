@@ -59,6 +59,18 @@ pub struct VolumeRecord {
     pub scale: f32,
 }
 
+/// Light a camera path found without the light pass: an emitter it saw, or a next-event
+/// estimate.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectRecord {
+    /// The pixel (a sensor's index for sensor paths).
+    pub pixel: u32,
+    /// The light it came from (its index in the scene's `LightSet`); None when the estimate
+    /// sums several lights (no light layers are kept).
+    pub light: Option<u32>,
+    pub value: Spectrum,
+}
+
 /// What one row (or any batch of pixels) of the camera pass produced: the records the gather
 /// structure is built from, and what the camera paths saw directly.
 #[derive(Default)]
@@ -69,12 +81,13 @@ pub struct CameraOutput {
     pub volumes: Vec<VolumeRecord>,
     /// Distinct camera throughputs, shared by the records.
     pub throughputs: ThroughputTable,
-    /// Radiance seen directly (emitters), per pixel of the batch: (pixel, value).
-    pub direct: Vec<(u32, Spectrum)>,
-    /// Next-event estimates of direct light summed over a pixel's camera paths, per pixel:
-    /// scattered by media (the `medium` layer) and reflected by surfaces (`surface`).
-    pub nee_medium: Vec<(u32, Spectrum)>,
-    pub nee_surface: Vec<(u32, Spectrum)>,
+    /// Radiance seen directly (emitters), per pixel of the batch.
+    pub direct: Vec<DirectRecord>,
+    /// Next-event estimates of direct light summed over a pixel's camera paths, per pixel (and
+    /// per light with light layers): scattered by media (the `medium` layer) and reflected by
+    /// surfaces (`surface`).
+    pub nee_medium: Vec<DirectRecord>,
+    pub nee_surface: Vec<DirectRecord>,
     /// Camera paths started.
     pub paths: u64,
 }

@@ -12,6 +12,7 @@ pub type Rng = Pcg64Mcg;
 pub enum Domain {
     Camera = 1,
     Light = 2,
+    Sensor = 3,
 }
 
 fn splitmix(mut z: u64) -> u64 {

@@ -55,6 +55,11 @@ pub enum DirectMode {
 /// same bits) on every machine. 4 GiB holds ~100 million integration spheres.
 pub const DEFAULT_GATHER_BYTES: u64 = 4 << 30;
 
+/// Sensor paths per illuminance sensor per pass when `sensor_paths` is not given: a few
+/// percent of the camera paths of a small image, enough for readings whose error falls with
+/// the passes as the image's does.
+pub const DEFAULT_SENSOR_PATHS: u32 = 1024;
+
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IntegratorDesc {
@@ -79,6 +84,9 @@ pub struct IntegratorDesc {
     /// Distance samples of next-event estimation per camera medium segment (and light samples
     /// per diffuse surface hit).
     pub nee_samples: u32,
+    /// Paths traced from each illuminance sensor per pass (cosine-distributed directions;
+    /// `integrator::sensors`).
+    pub sensor_paths: u32,
     pub channel_pick: ChannelPick,
     /// Uniform floor mixed into the channel probabilities so that none is zero.
     pub channel_floor: f32,
@@ -103,6 +111,7 @@ impl Default for IntegratorDesc {
             mode: GatherMode::FirstExtinction,
             direct: DirectMode::Nee,
             nee_samples: 1,
+            sensor_paths: DEFAULT_SENSOR_PATHS,
             channel_pick: ChannelPick::Throughput,
             channel_floor: 0.1,
             max_gather_bytes: 0,
@@ -158,6 +167,9 @@ impl IntegratorDesc {
         }
         if !(1..=1024).contains(&self.nee_samples) {
             fail("integrator.nee_samples", "must be in 1..=1024".into());
+        }
+        if !(1..=1 << 20).contains(&self.sensor_paths) {
+            fail("integrator.sensor_paths", "must be in 1..=1048576".into());
         }
         if !(self.channel_floor > 0.0 && self.channel_floor <= 1.0) {
             fail("integrator.channel_floor", "must be in (0, 1]".into());

@@ -17,10 +17,10 @@ use super::Direct;
 use super::sampling::{Equiangular, ExpMixture, cone_interval};
 use super::shadow::{optical_depth, visible};
 use crate::geometry::Ray;
+use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
 use crate::light::Anchor;
 use crate::medium::Mixture;
-use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
 /// One camera segment, as next-event estimation sees it.
@@ -35,8 +35,8 @@ pub struct Segment<'a> {
 
 impl Direct {
     /// Adds the single-scattering estimate of `seg` (per bin, without the camera throughput)
-    /// to `acc`.
-    pub fn medium_segment(&self, scene: &Scene, seg: &Segment, rng: &mut Rng, acc: &mut Spectrum) {
+    /// to `acc`, each sample to the light it sampled.
+    pub fn medium_segment(&self, scene: &Scene, seg: &Segment, rng: &mut Rng, acc: &mut ByLight) {
         if !(seg.len > 0.0 && seg.len.is_finite()) {
             return;
         }
@@ -97,11 +97,12 @@ impl Direct {
             let cos = arrival.wi.dot(d);
             let camera = med.sigma_t.transmittance(t, n);
             let value = camera * med.sigma_s * arrival.li * tr;
-            *acc += if med.phase.varies_per_bin() {
+            let sample = if med.phase.varies_per_bin() {
                 value * med.phase_bins(cos) * (inv_samples / (pdf * prob))
             } else {
                 value * (med.phase.eval(cos) / (pdf * prob) * inv_samples)
             };
+            acc.add(j, sample);
         }
     }
 }

@@ -8,12 +8,14 @@
 //! - `sampling.rs`: distance samplers along a camera segment, with their densities;
 //! - `shadow.rs`: transmittance of shadow rays through null boundaries and media;
 //! - `medium.rs`: the single-scattering estimate of one camera segment;
-//! - `surface.rs`: the reflected estimate at a surface gather point.
+//! - `surface.rs`: the reflected estimate at a surface gather point;
+//! - `sensor.rs`: the irradiance at an illuminance sensor.
 
 mod medium;
 
 pub use medium::Segment;
 pub mod sampling;
+mod sensor;
 mod shadow;
 mod surface;
 

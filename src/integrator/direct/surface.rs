@@ -10,10 +10,10 @@ use rand::Rng as _;
 use super::Direct;
 use super::shadow::visible;
 use crate::geometry::{Hit, Ray, spawn};
+use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
 use crate::light::{Anchor, Arrival, Light};
 use crate::material::Material;
-use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
 /// Which part of a material a surface estimate reflects with.
@@ -26,13 +26,13 @@ pub enum Part {
 }
 
 /// The power heuristic (exponent 2) for a sample of density `a` against another strategy's `b`.
-fn power(a: f32, b: f32) -> f32 {
+pub(super) fn power(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
 /// The solid-angle density of a surface anchor's sample seen from a point, for MIS.
-fn solid_angle_pdf(anchor: &Anchor, arrival: &Arrival) -> Option<f32> {
+pub(super) fn solid_angle_pdf(anchor: &Anchor, arrival: &Arrival) -> Option<f32> {
     match anchor {
         Anchor::Surface {
             normal, pdf_area, ..
@@ -46,8 +46,9 @@ fn solid_angle_pdf(anchor: &Anchor, arrival: &Arrival) -> Option<f32> {
 }
 
 impl Direct {
-    /// The direct light that `part` of `material` reflects at `hit` towards `wo` (per bin,
-    /// without the camera throughput).
+    /// Adds the direct light that `part` of `material` reflects at `hit` towards `wo` (per
+    /// bin, without the camera throughput) to `acc`, each sample to the light it sampled.
+    #[allow(clippy::too_many_arguments)]
     pub fn reflected(
         &self,
         scene: &Scene,
@@ -56,8 +57,8 @@ impl Direct {
         material: &Material,
         part: Part,
         rng: &mut Rng,
-    ) -> Spectrum {
-        let mut acc = Spectrum::ZERO;
+        acc: &mut ByLight,
+    ) {
         let medium = scene.geometry.medium_after(hit, wo);
         let inv_samples = 1.0 / self.samples as f32;
         for _ in 0..self.samples {
@@ -90,9 +91,8 @@ impl Direct {
             let Some(tr) = visible(scene, medium, o, arrival.wi, dist) else {
                 continue;
             };
-            acc += f * arrival.li * tr * (cos * mis / prob * inv_samples);
+            acc.add(j, f * arrival.li * tr * (cos * mis / prob * inv_samples));
         }
-        acc
     }
 
     /// The weight of emission that a camera path finds at `hit` on light `light` along `ray`

@@ -31,6 +31,7 @@ fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) 
         radius: integrator.radius.r0,
         first_row: 0,
         budget_bytes: usize::MAX,
+        light_layers: false,
     };
     let (mut out, rows) = camera_pass(s, integrator, &job, &never).unwrap();
     assert_eq!(rows, s.camera.resolution().1);

@@ -1,0 +1,353 @@
+//! One camera path: its state through the scene and what it records for the pass (gather
+//! records, emitters seen, next-event estimates). Pixels and illuminance sensors trace the same
+//! paths; a sensor path starts at the sensor with a cosine-distributed direction.
+
+use glam::Vec3;
+use rand::Rng as _;
+
+use super::Integrator;
+use super::by_light::ByLight;
+use super::direct::{Part, Segment};
+use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
+use super::oct::Oct;
+use super::path::{MediumStep, PathStep, SurfaceStep};
+use super::record::{
+    CLASS_ALL, CLASS_C, CameraOutput, DirectRecord, SegmentRecord, SurfaceRecord, VolumeRecord,
+};
+use super::rng::Rng;
+use super::settings::GatherMode;
+use crate::geometry::{Hit, Ray};
+use crate::material::LobeKind;
+use crate::medium::{Mixture, WalkEnd, sample_extinction, sample_scatter};
+use crate::spectrum::Spectrum;
+use crate::world::Scene;
+
+/// A pixel's next-event estimates, summed over its camera paths (one record per pixel and
+/// light, not per path).
+pub struct NeeSums {
+    /// Whether the sums are kept per light (light layers).
+    pub layers: bool,
+    medium: Option<ByLight>,
+    surface: Option<ByLight>,
+}
+
+impl NeeSums {
+    pub fn new(layers: bool) -> Self {
+        Self {
+            layers,
+            medium: None,
+            surface: None,
+        }
+    }
+
+    pub fn push_into(self, out: &mut CameraOutput, pixel: u32) {
+        for (sum, to) in [
+            (self.medium, &mut out.nee_medium),
+            (self.surface, &mut out.nee_surface),
+        ] {
+            for (light, value) in sum.iter().flat_map(ByLight::parts) {
+                to.push(DirectRecord {
+                    pixel,
+                    light,
+                    value,
+                });
+            }
+        }
+    }
+}
+
+/// Adds `v * w * s` to a sum started on first use.
+fn add(sum: &mut Option<ByLight>, layers: bool, v: &ByLight, w: &Spectrum, s: f32) {
+    sum.get_or_insert_with(|| ByLight::new(layers))
+        .add_weighted(v, w, s);
+}
+
+/// One camera path: its state, and what it records into the pass's output.
+pub struct CameraPath<'a> {
+    scene: &'a Scene,
+    integrator: &'a Integrator,
+    out: &'a mut CameraOutput,
+    nee: &'a mut NeeSums,
+    pixel: u32,
+    n: usize,
+    /// Spectral throughput from the camera.
+    w: Spectrum,
+    /// Whether medium segments still leave integration volumes.
+    gathering: bool,
+    /// Whether the path still sees emitters directly (false once they are gathered by volumes).
+    sees_emitters: bool,
+    /// The pass's gather radius.
+    pub radius: f32,
+    /// Where and with what density the path last left a glossy (non-delta) surface by a BSDF
+    /// sample, for the MIS weight of emitters it then hits; None after the camera, a delta
+    /// bounce or a medium scattering. A sensor path starts with its sensor and the density of
+    /// its cosine-distributed direction.
+    pub glossy_from: Option<(Vec3, f32)>,
+}
+
+impl<'a> CameraPath<'a> {
+    pub fn new(
+        scene: &'a Scene,
+        integrator: &'a Integrator,
+        pixel: u32,
+        out: &'a mut CameraOutput,
+        nee: &'a mut NeeSums,
+    ) -> Self {
+        let n = scene.grid.n;
+        Self {
+            scene,
+            integrator,
+            out,
+            nee,
+            pixel,
+            n,
+            w: Spectrum::splat(1.0, n),
+            gathering: true,
+            sees_emitters: true,
+            radius: 0.0,
+            glossy_from: None,
+        }
+    }
+
+    fn first_extinction(&self) -> bool {
+        self.integrator.settings.mode == GatherMode::FirstExtinction
+    }
+
+    /// The mixture of a camera segment in medium `m` with the path's throughput.
+    fn mixture(&self, m: u32) -> Mixture {
+        let med = &self.scene.media[m as usize];
+        self.integrator.settings.channels().mixture(&self.w, med)
+    }
+
+    /// Leaves the estimator's volumes on the segment along `ray` in medium `m`. The segment is
+    /// recorded with its first volume, so that one that leaves none (transmitted before the
+    /// first sub-step of a sphere walk) costs nothing.
+    fn leave_volumes<E: VolumeEstimator>(
+        &mut self,
+        e: &E,
+        m: u32,
+        ray: &Ray,
+        len: f32,
+        mix: &Mixture,
+        rng: &mut Rng,
+    ) -> WalkEnd {
+        let classes = if self.first_extinction() {
+            CLASS_ALL
+        } else {
+            CLASS_C
+        };
+        let cam = CameraSegment {
+            medium: &self.scene.media[m as usize],
+            medium_id: m,
+            dir: ray.d,
+            radius: self.radius,
+            mix,
+            len,
+            first_extinction: self.first_extinction(),
+        };
+        let (out, pixel, w, n) = (&mut *self.out, self.pixel, &self.w, self.n);
+        let mut segment = None;
+        e.camera_segment(&cam, rng, |s, scale| {
+            let segment = *segment.get_or_insert_with(|| {
+                let throughput = out.throughputs.insert(w.as_slice(n));
+                out.segments.push(SegmentRecord {
+                    origin: ray.o,
+                    pixel,
+                    dir: ray.d,
+                    throughput,
+                    medium: m as u16,
+                    classes,
+                });
+                out.segments.len() as u32 - 1
+            });
+            out.volumes.push(VolumeRecord { segment, s, scale });
+        })
+    }
+
+    /// Applies the end of a medium segment to the path (method note 4).
+    fn after_walk(&mut self, end: WalkEnd) -> MediumStep {
+        match end {
+            WalkEnd::Transmitted { weight } => {
+                self.w *= weight;
+                MediumStep::Reached
+            }
+            WalkEnd::Absorbed { .. } => MediumStep::Ended,
+            WalkEnd::Scattered { s, weight } => {
+                if self.first_extinction() {
+                    MediumStep::Ended
+                } else {
+                    self.w *= weight;
+                    MediumStep::Scattered(s)
+                }
+            }
+        }
+    }
+}
+
+impl PathStep for CameraPath<'_> {
+    /// One straight camera segment of length `len` inside medium `m` (method notes 2-5).
+    fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
+        let mix = self.mixture(m);
+        if !self.gathering {
+            // Free flight without gathering: the continuation of a see-through path (note 4).
+            let end = sample_extinction(&self.scene.media[m as usize], &mix, len, rng);
+            return self.after_walk(end);
+        }
+        if !self.first_extinction() {
+            // See-through: volumes gather class C on this first medium segment only.
+            self.gathering = false;
+        }
+        let integrator = self.integrator;
+        if let Some(direct) = &integrator.direct {
+            // Direct light over the whole segment, whatever the walk does on it (note 9).
+            let seg = Segment {
+                medium: m,
+                ray,
+                len,
+                mix: &mix,
+            };
+            let mut acc = ByLight::new(self.nee.layers);
+            direct.medium_segment(self.scene, &seg, rng, &mut acc);
+            add(&mut self.nee.medium, self.nee.layers, &acc, &self.w, 1.0);
+        }
+        let end = match &integrator.estimator {
+            Estimator::Spheres(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
+            Estimator::Cylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
+            Estimator::TruncatedCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
+            Estimator::LongCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
+        };
+        self.after_walk(end)
+    }
+
+    fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
+        // Light reaching the path after a medium scattering is class C light that the volumes
+        // already gathered (method note 6).
+        self.sees_emitters = false;
+        self.glossy_from = None;
+        let p = ray.o + ray.d * t;
+        let med = &self.scene.media[m as usize];
+        let ch = self.integrator.settings.channels();
+        let (d, factors) = sample_scatter(med, ray.d, &self.w, ch.pick, ch.floor, rng);
+        if let Some(f) = factors {
+            self.w *= f;
+        }
+        self.roulette(depth, rng).then_some(Ray { o: p, d })
+    }
+
+    fn vacuum(&mut self, _ray: &Ray, _hit: Option<&Hit>) {}
+
+    /// Emission, gathering on the diffuse part, continuation through the non-diffuse part.
+    fn surface(&mut self, hit: &Hit, ray: &Ray, rng: &mut Rng) -> SurfaceStep {
+        let scene = self.scene;
+        let wo = -ray.d;
+        let shape = scene.geometry.shape(hit.shape);
+        if let Some(l) = shape.light
+            && self.sees_emitters
+        {
+            let le = scene.lights.lights()[l as usize].radiance(hit, wo);
+            if !le.is_zero() {
+                let v = match (&self.integrator.direct, self.glossy_from) {
+                    (Some(d), Some((from, pdf))) => {
+                        le * self.w * d.emission_weight(scene, l, ray, hit, from, pdf)
+                    }
+                    (Some(_), None) | (None, _) => le * self.w,
+                };
+                self.out.direct.push(DirectRecord {
+                    pixel: self.pixel,
+                    light: Some(l),
+                    value: v,
+                });
+            }
+        }
+        let Some(mat_id) = shape.material else {
+            return SurfaceStep::Null;
+        };
+        let material = &scene.materials[mat_id as usize];
+        let pd = material.diffuse_probability(wo, hit);
+        if pd > 0.0 && rng.random::<f32>() < pd {
+            self.gather_here(hit, wo, pd);
+            if let Some(direct) = &self.integrator.direct {
+                let mut v = ByLight::new(self.nee.layers);
+                direct.reflected(scene, hit, wo, material, Part::Diffuse, rng, &mut v);
+                add(
+                    &mut self.nee.surface,
+                    self.nee.layers,
+                    &v,
+                    &self.w,
+                    1.0 / pd,
+                );
+            }
+            return SurfaceStep::Stop;
+        }
+        if let Some(direct) = &self.integrator.direct
+            && material.has_glossy()
+        {
+            let mut v = ByLight::new(self.nee.layers);
+            direct.reflected(scene, hit, wo, material, Part::Glossy, rng, &mut v);
+            add(
+                &mut self.nee.surface,
+                self.nee.layers,
+                &v,
+                &self.w,
+                1.0 / (1.0 - pd),
+            );
+        }
+        let u = Vec3::new(rng.random(), rng.random(), rng.random());
+        let Some(s) = material.sample_nondiffuse(wo, hit, u) else {
+            return SurfaceStep::Stop;
+        };
+        self.glossy_from = match s.kind {
+            LobeKind::Glossy => Some((hit.p, material.pdf_nondiffuse(wo, s.wi, hit))),
+            LobeKind::Specular | LobeKind::Diffuse => None,
+        };
+        self.w *= s.weight * (1.0 / (1.0 - pd));
+        if self.w.is_zero() {
+            return SurfaceStep::Stop;
+        }
+        SurfaceStep::Scattered(s.wi)
+    }
+
+    /// Camera throughput starts at 1 and only falls through events: after the first three
+    /// bounces (which carry most of the image, so they are never cut) the path survives with
+    /// probability `max_l W_l` (at most 1) and is reweighted by its inverse.
+    fn roulette(&mut self, depth: u32, rng: &mut Rng) -> bool {
+        if depth < 3 {
+            return true;
+        }
+        let p = self.w.max_value().min(1.0);
+        if p <= 0.0 || rng.random::<f32>() >= p {
+            return false;
+        }
+        self.w *= 1.0 / p;
+        true
+    }
+}
+
+impl CameraPath<'_> {
+    /// Leaves a surface sphere on the diffuse part chosen with probability `pd`. Near an edge
+    /// of its surface the sphere's weight is divided by the fraction of its disc on the surface
+    /// (`Geometry::disc_fraction`), so that it estimates the mean over the part that can be hit.
+    fn gather_here(&mut self, hit: &Hit, wo: Vec3, pd: f32) {
+        let n = if hit.ns.dot(wo) >= 0.0 {
+            hit.ns
+        } else {
+            -hit.ns
+        };
+        let throughput = self.out.throughputs.insert(self.w.as_slice(self.n));
+        self.out.surfaces.push(SurfaceRecord {
+            p: hit.p,
+            pixel: self.pixel,
+            n: Oct::encode(n),
+            wo: Oct::encode(wo),
+            shape: hit.shape,
+            uv: hit.uv,
+            throughput,
+            scale: 1.0
+                / (pd
+                    * self
+                        .scene
+                        .geometry
+                        .disc_fraction(hit.shape, hit.p, self.radius)),
+        });
+    }
+}
