@@ -273,6 +273,10 @@ def main() -> None:
         m_ref, m_ref_t, m_ref_spp = mit.render_wall(a.mitsuba_ref_seconds or a.ref_seconds)
         mit.mi.util.write_bitmap(str(work / "mitsuba-ref.exr"), m_ref.astype(np.float32))
         meta["mitsuba"] = {"seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor, "clock": a.clock, "variant": a.variant}
+    if mit is not None and "mitsuba" in meta and mit.seed < 10**7:
+        # A reused reference was rendered with seeds 2, 3, ... of an earlier process: start the
+        # ladder's chunks far beyond them, or its images would share samples with the reference.
+        mit.seed = 10**7
     meta_path.write_text(json.dumps(meta, indent=2))
     print(f"references: brume {b_ref_t:.1f} s, mitsuba {m_ref_t:.1f} s ({m_ref_spp} spp)", flush=True)
 
