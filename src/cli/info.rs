@@ -9,7 +9,15 @@ pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     // spectrum file, so info reports their errors too.
     let s = brume::scene::summary::summarise(&scene);
     print!("{s}");
-    let (_, warnings) = brume::scene::build_with_warnings(&scene)?;
+    let (built, warnings) = brume::scene::build_with_warnings(&scene)?;
+    // The radius "auto" resolves to, and any radius in pixel footprints (the unit the
+    // auto rule and the studies of docs/performance.md use).
+    let footprint = brume::integrator::radius::pixel_footprint(&built.camera, &built.geometry);
+    let r0 = brume::scene::build_integrator(&scene, &built)?.radius.r0;
+    println!(
+        "radius:       {r0:.5} m = {:.2} x the median pixel footprint ({footprint:.5} m)",
+        r0 / footprint
+    );
     for w in &warnings {
         eprintln!("brume: warning: {w}");
     }

@@ -47,18 +47,28 @@ pub fn radius_for_pass(r0: f32, alpha: f32, p: u64) -> f32 {
 
 /// Pixels sampled (per side) to find the footprint of `auto_radius`.
 const FOOTPRINT_GRID: u32 = 24;
-/// `auto_radius` in pixel footprints: a sphere as wide as 3 pixels gathers enough forward rays
-/// and blurs less than a pixel and a half either way (the shipped scenes' hand-set radii are
-/// 1.3 to 2.8 footprints).
-const FOOTPRINT_RADII: f32 = 1.5;
+/// `auto_radius` in pixel footprints. Measured at equal CPU time with next-event estimation
+/// (docs/performance.md, "Radius of the gathered part"): 1.5 footprints beat 3 on chromatic-fog
+/// (1.46x) and fog-room-laser (6.8x, its laser's direct light gathered on the surfaces), and lost
+/// to 3 on fog-cube (0.81x); the surface layer is most efficient at 1 to 1.5 footprints in all
+/// three, the medium layer at 3 or more in fog-cube and fog-room-laser.
+pub const FOOTPRINT_RADII: f32 = 1.5;
 
-/// `integrator.radius = "auto"`: 1.5 times the median pixel footprint at the camera's first
-/// hits of surfaces with a material (as SPPM renderers start their radius from the pixel
-/// footprint; Hachisuka & Jensen 2009). The footprint of a pixel is the distance between the
-/// rays through its centre and its neighbour's at the hit's depth: the pixel size for an
-/// orthographic camera, depth x pixel angle for a perspective one. Rays that hit nothing take
-/// the depth where they leave the geometry's bounds. Deterministic (a fixed grid of pixels).
+/// `integrator.radius = "auto"`: [`FOOTPRINT_RADII`] times the median pixel footprint
+/// ([`pixel_footprint`]; SPPM renderers also start their radius from the pixel footprint,
+/// Hachisuka & Jensen 2009).
 pub fn auto_radius(camera: &Camera, geometry: &Geometry) -> f32 {
+    FOOTPRINT_RADII * pixel_footprint(camera, geometry)
+}
+
+/// The median pixel footprint at the camera's first hits of surfaces with a material. The
+/// footprint of a pixel is the distance between the rays through its centre and its
+/// neighbour's at the hit's depth: the pixel size for an orthographic camera, depth x pixel
+/// angle for a perspective one. Rays that hit nothing take the depth where they leave the
+/// geometry's bounds. Deterministic (a fixed grid of pixels). With nothing in view, a
+/// thousandth of the scene's diagonal (at least 0.1 mm) over [`FOOTPRINT_RADII`] stands
+/// in (so that the auto radius is that thousandth).
+pub fn pixel_footprint(camera: &Camera, geometry: &Geometry) -> f32 {
     let (w, h) = camera.resolution();
     let bounds = geometry.bounds();
     let mut footprints = Vec::new();
@@ -78,11 +88,10 @@ pub fn auto_radius(camera: &Camera, geometry: &Geometry) -> f32 {
         }
     }
     if footprints.is_empty() {
-        // Nothing in view: a thousandth of the scene.
-        return (1e-3 * bounds.diagonal().length()).max(1e-4);
+        return (1e-3 * bounds.diagonal().length()).max(1e-4) / FOOTPRINT_RADII;
     }
     footprints.sort_by(f32::total_cmp);
-    FOOTPRINT_RADII * footprints[footprints.len() / 2]
+    footprints[footprints.len() / 2]
 }
 
 /// Distance to the first surface with a material along `ray` (null boundaries passed).
@@ -142,6 +151,70 @@ mod tests {
         let above = s.at(1_000_001) as f64;
         let expect = (1_000_001.0f64 / 999_998.0).powf(-0.25);
         assert!(((above / below) / expect - 1.0).abs() < 1e-5);
+    }
+
+    const ORTHO: &str = "[camera]\ntype = \"orthographic\"\nwidth = 100\nheight = 100\n\
+        position = [0.0, 0.0, 2.0]\nlook_at = [0.0, 0.0, 0.0]\nview_width = 1.0\nview_height = 1.0";
+
+    fn built(camera: &str) -> crate::world::Scene {
+        built_with(camera, "").1
+    }
+
+    fn built_with(camera: &str, integrator: &str) -> (f32, crate::world::Scene) {
+        let text = format!(
+            "{camera}\n[materials.w]\ntype = \"lambert\"\nalbedo = 0.5\n\
+             [[shapes]]\ntype = \"quad\"\nsize = [4.0, 4.0]\nmaterial = \"w\"\n\
+             [[lights]]\ntype = \"directional\"\ndirection = [0.0, 0.0, -1.0]\n\
+             irradiance = 1.0\n[integrator]\nradius = \"auto\"\n{integrator}"
+        );
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
+        let loaded = crate::scene::load_str(&text, &dir, &[]).unwrap();
+        let scene = crate::scene::build(&loaded).unwrap();
+        let r0 = crate::scene::build_integrator(&loaded, &scene)
+            .unwrap()
+            .radius
+            .r0;
+        (r0, scene)
+    }
+
+    /// The auto rule: 1.5 pixel footprints, also as the integrator resolves `radius = "auto"`
+    /// (under either direct mode). Orthographic: 1 m over 100 pixels is a 1 cm footprint, so
+    /// 1.5 cm; perspective: a wall 2 m away, normal to the view, fov 40 degrees over 100
+    /// pixels, footprint 2 x 2 tan(20 deg) / 100 = 1.456 cm at the centre and a little less at
+    /// the median pixel (x cos of the angle off axis: the depth grows as 1 / cos, the angle
+    /// between neighbouring rays shrinks as cos^2; measured 1.435 cm). A changed multiplier or a
+    /// footprint measured at the wrong depth fails.
+    #[test]
+    fn auto_radius_is_one_and_a_half_footprints() {
+        let ortho = built(ORTHO);
+        let f = pixel_footprint(&ortho.camera, &ortho.geometry);
+        assert!((f - 0.01).abs() < 1e-5, "orthographic footprint {f}");
+        let r = auto_radius(&ortho.camera, &ortho.geometry);
+        assert!((r - 0.015).abs() < 2e-5, "orthographic auto radius {r}");
+        for direct in ["nee", "photons"] {
+            let (r0, _) = built_with(ORTHO, &format!("direct = \"{direct}\"\n"));
+            assert!(
+                (r0 - 0.015).abs() < 2e-5,
+                "integrator's auto radius ({direct}) {r0}"
+            );
+        }
+
+        let persp = built(
+            "[camera]\ntype = \"perspective\"\nwidth = 100\nheight = 100\n\
+             position = [0.0, 0.0, 2.0]\nlook_at = [0.0, 0.0, 0.0]\nfov = 40.0",
+        );
+        let centre = 2.0 * 2.0 * 20f32.to_radians().tan() / 100.0;
+        let f = pixel_footprint(&persp.camera, &persp.geometry);
+        assert!(
+            f <= centre && f > 0.95 * centre,
+            "perspective footprint {f} vs {centre}"
+        );
+        let r = auto_radius(&persp.camera, &persp.geometry);
+        assert!(
+            (r / f - 1.5).abs() < 1e-5,
+            "perspective auto radius {r} = {} footprints",
+            r / f
+        );
     }
 
     /// Huge pass indices (a pass range near 2^53) take constant time and give a finite,

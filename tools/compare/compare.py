@@ -1,10 +1,27 @@
-"""Equal-time comparison of brume and Mitsuba 3 on one scene: error versus wall-clock time.
+"""Equal-time comparison of brume and Mitsuba 3 on one scene: error versus time (wall-clock or CPU).
 
 Usage (from the repository root, with the venv of tools/compare/requirements.txt):
   .venv/bin/python tools/compare/compare.py scenes/fog-cube.toml --brume target/release/brume \
       --ref-seconds 120 --times 5 15 60 --out docs/images/perf-fog-cube
   .venv/bin/python tools/compare/compare.py scenes/fog-room-laser.toml --brume target/release/brume \
       --ref-seconds 600 --mitsuba-ref-seconds 600 --times 5 15 60 --out docs/images/perf-room
+
+  DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so .venv/bin/python tools/compare/compare.py \
+      scenes/fog-cube.toml --variant llvm_ad_spectral --clock cpu --runs 3 --times 5 15 60 \
+      --ref-seconds 120 --out docs/images/perf-fog-cube-llvm
+
+Clocks (--clock):
+- wall (default): wall-clock seconds, as below.
+- cpu: each renderer is charged the CPU seconds of its own process (user + system, all threads),
+  which a busy machine disturbs much less than wall time. brume: the child's rusage (os.wait4),
+  the whole process including scene load; brume render has only a wall-clock budget, so the
+  pass count for a CPU budget T is chosen from a calibration (CPU of 1 and 3 passes of the same
+  settings: load + N x per-pass cost = T) and the CPU actually used is what is reported.
+  Mitsuba: time.process_time() around its mi.render calls (the LLVM backend's worker threads run
+  inside this Python process, so they are counted), chunks until the budget is spent.
+- --runs K repeats the ladder with other seeds (the references are shared), so the CSV has K rows
+  per renderer and budget; the summary prints mean +- sd over runs, the brume / Mitsuba ratio of
+  mean relative RMSE per budget, and the least-squares slope of log RMSE against log time.
 
 Method:
 - Each renderer renders a long reference and one image per ladder time with a different seed.
@@ -42,6 +59,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import os
 import subprocess
 import sys
 import time
@@ -64,20 +82,60 @@ def read_rgb(path: Path) -> np.ndarray:
         return np.stack([np.asarray(ch[c].pixels, dtype=np.float64) for c in "RGB"], axis=-1)
 
 
+def clock_fn(clock: str):
+    """The timer a clock reads: wall-clock, or this process's CPU seconds (all threads)."""
+    return time.perf_counter if clock == "wall" else time.process_time
+
+
+def run_child_cpu(cmd: list[str]) -> float:
+    """Run cmd; return its CPU seconds (user + system, all threads) from its rusage."""
+    proc = subprocess.Popen(cmd)
+    _, status, ru = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    if proc.returncode != 0:
+        raise subprocess.CalledProcessError(proc.returncode, cmd)
+    return ru.ru_utime + ru.ru_stime
+
+
+_PASS_COST: dict[tuple, tuple[float, float]] = {}
+
+
+def brume_pass_cost(brume: str, scene: Path, sets: tuple, out: Path) -> tuple[float, float]:
+    """(load CPU s, CPU s per pass) of brume with these settings: from runs of 1 and 3 passes."""
+    key = (brume, str(scene), sets)
+    if key not in _PASS_COST:
+        base = [brume, "render", str(scene), "--seed", "999", "-o", str(out), "--quiet"]
+        for s in sets:
+            base += ["--set", s]
+        c1 = run_child_cpu(base + ["--passes", "1"])
+        c3 = run_child_cpu(base + ["--passes", "3"])
+        per = max((c3 - c1) / 2.0, 1e-3)
+        _PASS_COST[key] = (max(c1 - per, 0.0), per)
+        print(f"brume: {per:.3f} CPU s per pass, {max(c1 - per, 0.0):.2f} s load ({' '.join(sets) or 'scene settings'})", flush=True)
+    return _PASS_COST[key]
+
+
 def brume_render(
-    brume: str, scene: Path, seconds: float, seed: int, out: Path, sets: list[str] = ()
+    brume: str, scene: Path, seconds: float, seed: int, out: Path, sets: list[str] = (), clock: str = "wall"
 ) -> tuple[np.ndarray, float]:
-    cmd = [brume, "render", str(scene), "--time", str(seconds), "--seed", str(seed), "-o", str(out), "--quiet"]
+    """brume's image for a budget and the seconds charged on the clock."""
+    cmd = [brume, "render", str(scene), "--seed", str(seed), "-o", str(out), "--quiet"]
     for s in sets:
         cmd += ["--set", s]
+    if clock == "cpu":
+        load, per = brume_pass_cost(brume, scene, tuple(sets), out)
+        passes = max(1, round((seconds - load) / per))
+        cpu = run_child_cpu(cmd + ["--passes", str(passes)])
+        return read_rgb(out), cpu
     t0 = time.perf_counter()
-    subprocess.run(cmd, check=True)
+    subprocess.run(cmd + ["--time", str(seconds)], check=True)
     return read_rgb(out), time.perf_counter() - t0
 
 
 class Mitsuba:
     def __init__(
-        self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float, laser_r: float | None
+        self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float, laser_r: float | None,
+        clock: str = "wall",
     ):
         import mitsuba as mi
 
@@ -89,17 +147,18 @@ class Mitsuba:
         self.scene = mi.load_dict(self._dict(scene, chunk_spp, floor, drop))
         self.chunk = chunk_spp
         self.seed = 0
+        self.now = clock_fn(clock)
         self.render_wall(0.0)  # warm-up (not timed)
         # Seconds per spp of a native floor BSDF, when the rendered one is the Python plugin.
         self.s_per_spp = None
         if floor == "exact" and glossy:
             fast = mi.load_dict(self._dict(scene, chunk_spp, "builtin", drop))
             mi.render(fast, spp=chunk_spp, seed=10**6)
-            n, t0 = 0, time.perf_counter()
-            while n == 0 or time.perf_counter() - t0 < calib_s:
+            n, t0 = 0, self.now()
+            while n == 0 or self.now() - t0 < calib_s:
                 mi.render(fast, spp=chunk_spp, seed=10**6 + 1 + n)
                 n += 1
-            self.s_per_spp = (time.perf_counter() - t0) / (n * chunk_spp)
+            self.s_per_spp = (self.now() - t0) / (n * chunk_spp)
             print(f"mitsuba: native-floor cost {self.s_per_spp:.3f} s/spp ({n * chunk_spp} spp)", flush=True)
 
     def _dict(self, scene, spp, floor, drop):
@@ -113,15 +172,16 @@ class Mitsuba:
         return np.asarray(self.mi.render(self.scene, spp=self.chunk, seed=self.seed), dtype=np.float64)
 
     def render_wall(self, seconds: float) -> tuple[np.ndarray, float, int]:
-        acc, chunks, t0 = None, 0, time.perf_counter()
-        while acc is None or time.perf_counter() - t0 < seconds:
+        """Chunks of spp until `seconds` are spent on the comparison's clock (wall or CPU)."""
+        acc, chunks, t0 = None, 0, self.now()
+        while acc is None or self.now() - t0 < seconds:
             img = self._chunk()
             acc = img if acc is None else acc + img
             chunks += 1
-        return acc / chunks, time.perf_counter() - t0, chunks * self.chunk
+        return acc / chunks, self.now() - t0, chunks * self.chunk
 
     def render(self, seconds: float) -> tuple[np.ndarray, float, int]:
-        """An image for a time budget: wall-clock, or spp-equivalent to a native floor BSDF."""
+        """An image for a time budget on the clock, or spp-equivalent to a native floor BSDF."""
         if self.s_per_spp is None:
             return self.render_wall(seconds)
         chunks = max(1, round(seconds / (self.s_per_spp * self.chunk)))
@@ -168,6 +228,8 @@ def main() -> None:
     ap.add_argument("--ref-seconds", type=float, default=120.0, help="brume reference (and Mitsuba's, unless --mitsuba-ref-seconds)")
     ap.add_argument("--mitsuba-ref-seconds", type=float, default=None, help="Mitsuba reference, wall-clock")
     ap.add_argument("--times", type=float, nargs="+", default=[2, 5, 15, 60])
+    ap.add_argument("--clock", choices=["wall", "cpu"], default="wall", help="charge wall-clock seconds, or each renderer's process CPU seconds (brume: child rusage; Mitsuba: time.process_time)")
+    ap.add_argument("--runs", type=int, default=1, help="repeat the ladder with other seeds (shared references); the summary gives mean +- sd")
     ap.add_argument("--brume-set", action="append", default=[], help="brume --set KEY=VALUE for the ladder (repeatable); the reference keeps the scene's settings (plus --brume-ref-set)")
     ap.add_argument("--brume-ref-set", action="append", default=[], help="brume --set KEY=VALUE for the reference only (repeatable)")
     ap.add_argument("--floor", choices=["exact", "builtin"], default="exact", help="Mitsuba's glossy floor: brume's BSDF as a Python plugin (timed as native) or roughplastic")
@@ -191,23 +253,30 @@ def main() -> None:
     if a.brume_only and not a.reuse_refs:
         ap.error("--brume-only needs --reuse-refs")
     mit = None if a.brume_only else Mitsuba(
-        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius
+        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius, a.clock
     )
 
     # References (cached with their times for --reuse-refs).
     meta_path = work / "refs.json"
     meta = json.loads(meta_path.read_text()) if a.reuse_refs and meta_path.exists() else {}
+    for who in ("brume", "mitsuba"):
+        if who in meta and meta[who].get("clock", "wall") != a.clock:
+            ap.error(f"--reuse-refs: the stored {who} reference was timed on the {meta[who].get('clock', 'wall')} clock, not {a.clock}")
     if "brume" in meta:
         b_ref, b_ref_t = read_rgb(work / "brume-ref.exr"), meta["brume"]["seconds"]
     else:
-        b_ref, b_ref_t = brume_render(a.brume, a.scene, a.ref_seconds, 1000, work / "brume-ref.exr", drop_sets + a.brume_ref_set)
-        meta["brume"] = {"seconds": b_ref_t, "sets": drop_sets + a.brume_ref_set}
+        b_ref, b_ref_t = brume_render(a.brume, a.scene, a.ref_seconds, 1000, work / "brume-ref.exr", drop_sets + a.brume_ref_set, a.clock)
+        meta["brume"] = {"seconds": b_ref_t, "sets": drop_sets + a.brume_ref_set, "clock": a.clock}
     if "mitsuba" in meta:
         m_ref, m_ref_t, m_ref_spp = read_rgb(work / "mitsuba-ref.exr"), meta["mitsuba"]["seconds"], meta["mitsuba"]["spp"]
     else:
         m_ref, m_ref_t, m_ref_spp = mit.render_wall(a.mitsuba_ref_seconds or a.ref_seconds)
         mit.mi.util.write_bitmap(str(work / "mitsuba-ref.exr"), m_ref.astype(np.float32))
-        meta["mitsuba"] = {"seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor}
+        meta["mitsuba"] = {"seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor, "clock": a.clock, "variant": a.variant}
+    if mit is not None and "mitsuba" in meta and mit.seed < 10**7:
+        # A reused reference was rendered with seeds 2, 3, ... of an earlier process: start the
+        # ladder's chunks far beyond them, or its images would share samples with the reference.
+        mit.seed = 10**7
     meta_path.write_text(json.dumps(meta, indent=2))
     print(f"references: brume {b_ref_t:.1f} s, mitsuba {m_ref_t:.1f} s ({m_ref_spp} spp)", flush=True)
 
@@ -235,8 +304,14 @@ def main() -> None:
     b_var_ref = []  # estimates of brume's reference variance per pixel (whole image)
     same_settings = not a.brume_set
     stored_var = None if same_settings else meta.get("brume_var_ref")
-    for i, t in enumerate(a.times):
-        img, bt = brume_render(a.brume, a.scene, t, 1 + i, work / f"brume-{t:g}.exr", drop_sets + a.brume_set)
+    # Every run's short budgets before any long one, so an interrupted ladder has all its runs
+    # at the budgets it reached; each rung's raw errors go to <out>-rungs.jsonl as they come.
+    ladder = [(run, i, t) for i, t in enumerate(a.times) for run in range(a.runs)]
+    rungs = (a.out.parent / (a.out.name + "-rungs.jsonl")).open("w")
+    for run, i, t in ladder:
+        img, bt = brume_render(
+            a.brume, a.scene, t, 1 + i + 100 * run, work / f"brume-{t:g}.exr", drop_sets + a.brume_set, a.clock
+        )
         f = own_share(bt, b_ref_t)
         e = errors(img, b_ref, away, beam)
         b_var_ref.append(tuple(x * (1 - f) for x in e))
@@ -247,22 +322,29 @@ def main() -> None:
         else:
             own = tuple(x * f for x in e)
         rows.append({
-            "renderer": "brume", "budget_s": t, "measured_s": bt, "spp": "",
+            "renderer": "brume", "run": run, "budget_s": t, "measured_s": bt, "spp": "",
             "_mse": own,
             "own_away": np.sqrt(own[1]) / b_ref[away].mean(),
         })
         if a.brume_only:
-            print(f"t={t:g}: brume {bt:.1f} s", flush=True)
+            print(f"run {run} t={t:g}: brume {bt:.1f} s", flush=True)
             continue
         img, mt, spp = mit.render(t)
         ff = own_share(spp, m_ref_spp)
+        rungs.write(json.dumps({
+            "run": run, "budget_s": t, "brume_s": bt, "brume_mse_own": own, "mitsuba_s": mt, "mitsuba_spp": spp,
+            "mitsuba_mse_own_ref": errors(img, m_ref, away, beam), "mitsuba_own_share": ff,
+            "brume_ref_mean": float(b_ref.mean()), "mitsuba_ref_mean": float(m_ref.mean()),
+        }) + "\n")
+        rungs.flush()
         img_m[len(rows)] = img
         rows.append({
-            "renderer": "mitsuba", "budget_s": t, "measured_s": mt, "spp": spp,
+            "renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": mt, "spp": spp,
             "_raw": errors(k * img, b_ref, away, beam),
             "own_away": np.sqrt(mse(img, m_ref, away) * ff) / m_ref[away].mean(),
         })
-        print(f"t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp)", flush=True)
+        print(f"run {run} t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp) [{a.clock}]", flush=True)
+    rungs.close()
     var_ref = np.mean(np.array(b_var_ref), axis=0)
     if same_settings:
         meta["brume_var_ref"] = var_ref.tolist()
@@ -344,7 +426,7 @@ def main() -> None:
     (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
     print(json.dumps({x: y for x, y in agreement.items() if x != "region_means_linear_srgb_away_from_beam"}, indent=2), flush=True)
 
-    cols = ["renderer", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "own_away"]
+    cols = ["renderer", "run", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "own_away"]
     csv_path = a.out.parent / (a.out.name + ".csv")
     with csv_path.open("w", newline="") as f:
         wr = csv.writer(f)
@@ -353,8 +435,41 @@ def main() -> None:
             wr.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in cols])
     for r in rows:
         print(", ".join(f"{c}={r[c]:.4g}" if isinstance(r[c], float) else f"{c}={r[c]}" for c in cols), flush=True)
-    plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem, bool(lasers))
+    summary = summarise(rows, a.clock)
+    (a.out.parent / (a.out.name + "-summary.json")).write_text(json.dumps(summary, indent=2))
+    print(json.dumps(summary, indent=2), flush=True)
+    plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem, bool(lasers), a.clock)
     side_by_side(b_ref, k * m_ref, beam, a.out.parent / (a.out.name + "-refs.png"))
+
+
+def summarise(rows, clock: str) -> dict:
+    """Per renderer and budget: mean +- sd over runs of the charged seconds and of the errors;
+    the brume / Mitsuba ratio of the means; the slope of log RMSE against log seconds (all runs)."""
+    out = {"clock": clock, "budgets": {}, "slope": {}}
+    keys = ("measured_s", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam")
+    for r in rows:
+        b = out["budgets"].setdefault(f"{r['budget_s']:g}", {}).setdefault(r["renderer"], {k: [] for k in keys})
+        for k in keys:
+            if isinstance(r[k], float):
+                b[k].append(r[k])
+    for per in out["budgets"].values():
+        for who, d in per.items():
+            per[who] = {k: {"mean": float(np.mean(v)), "sd": float(np.std(v, ddof=1)) if len(v) > 1 else 0.0, "runs": len(v)} for k, v in d.items() if v}
+        if "brume" in per and "mitsuba" in per:
+            per["ratio_brume_over_mitsuba"] = {
+                k: per["brume"][k]["mean"] / per["mitsuba"][k]["mean"]
+                for k in ("rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam")
+                if k in per["brume"] and k in per["mitsuba"] and per["mitsuba"][k]["mean"] > 0
+            }
+    for who in ("brume", "mitsuba"):
+        pts = [(r["measured_s"], r["rel_rmse"], r["rel_rmse_bin4"]) for r in rows if r["renderer"] == who]
+        if len({round(p[0], 3) for p in pts}) > 1:
+            lt = np.log([p[0] for p in pts])
+            out["slope"][who] = {
+                "rel_rmse": float(np.polyfit(lt, np.log([p[1] for p in pts]), 1)[0]),
+                "rel_rmse_bin4": float(np.polyfit(lt, np.log([p[2] for p in pts]), 1)[0]),
+            }
+    return out
 
 
 def side_by_side(b: np.ndarray, m: np.ndarray, beam: np.ndarray, path: Path) -> None:
@@ -373,7 +488,7 @@ def side_by_side(b: np.ndarray, m: np.ndarray, beam: np.ndarray, path: Path) -> 
     Image.fromarray((row * 255 + 0.5).astype(np.uint8)).save(path)
 
 
-def plot(rows, path: Path, title: str, laser: bool) -> None:
+def plot(rows, path: Path, title: str, laser: bool, clock: str = "wall") -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -381,14 +496,16 @@ def plot(rows, path: Path, title: str, laser: bool) -> None:
 
     fig, ax = plt.subplots(figsize=(5, 3.6), dpi=110)
     for name, colour in (("brume", "C0"), ("mitsuba", "C1")):
-        pts = [(r["measured_s"], r["rel_rmse"]) for r in rows if r["renderer"] == name]
-        if not pts:
-            continue
-        ax.loglog(*zip(*pts), "o-", color=colour, label=name)
-        if laser:
-            pts = [(r["measured_s"], r["rel_rmse_away"]) for r in rows if r["renderer"] == name]
-            ax.loglog(*zip(*pts), "s--", color=colour, alpha=0.6, label=f"{name}, away from beam")
-    ax.set_xlabel("seconds (2 shared cores)")
+        for run in sorted({r["run"] for r in rows if r["renderer"] == name}):
+            mine = [r for r in rows if r["renderer"] == name and r["run"] == run]
+            first = run == min(r["run"] for r in rows)
+            ax.loglog([r["measured_s"] for r in mine], [r["rel_rmse"] for r in mine], "o-", color=colour, label=name if first else None)
+            if laser:
+                ax.loglog(
+                    [r["measured_s"] for r in mine], [r["rel_rmse_away"] for r in mine], "s--", color=colour, alpha=0.6,
+                    label=f"{name}, away from beam" if first else None,
+                )
+    ax.set_xlabel("CPU seconds (2 shared cores)" if clock == "cpu" else "seconds (2 shared cores)")
     ax.set_ylabel("relative RMSE vs brume's reference" if laser else "relative RMSE vs own reference")
     ax.set_title(f"{title}: error vs time")
     ax.grid(True, which="both", alpha=0.3)
