@@ -118,8 +118,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// `render_pass`, abandoned (nothing added to the film, false returned) as soon as `stop`
-    /// is set: between rows of the camera pass and between chunks of forward rays, so that an
-    /// interrupt never waits for a long pass.
+    /// is set: checked before every pixel of the camera pass, before the gather structure is
+    /// built and every 256 forward rays, so that an interrupt never waits for a long pass.
     pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
         let (scene, integrator) = (self.scene, &self.integrator);
         let pass = self.film.end();
@@ -143,6 +143,10 @@ impl<'a> Renderer<'a> {
             let Some((mut out, next)) = camera_pass(scene, integrator, &job, stop) else {
                 return false;
             };
+            // Building the gather cannot be interrupted: do not start it after a stop.
+            if stop.load(Ordering::Relaxed) {
+                return false;
+            }
             let t1 = Instant::now();
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
