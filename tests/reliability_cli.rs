@@ -2,6 +2,9 @@
 //! image of passes 0..N of a seed must give the same bytes; every request that would give
 //! another image, or lose work, is refused before rendering. Drives the built `brume` binary.
 
+#[path = "reliability_cli/interrupts.rs"]
+mod interrupts;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

@@ -33,6 +33,8 @@ impl Progress {
             bar.set_prefix(label.to_string());
             Progress::Bar(bar)
         } else {
+            // A first line at once: a log then shows when the work (after setup) began.
+            eprintln!("{label}: 0/{total} after 0.0 s");
             let now = Instant::now();
             Progress::Lines {
                 label: label.to_string(),

@@ -151,8 +151,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// `render_pass`, abandoned (nothing added to the film, false returned) as soon as `stop`
-    /// is set: between rows of the camera pass and between chunks of forward rays, so that an
-    /// interrupt never waits for a long pass.
+    /// is set: checked before every pixel of the camera pass, before the gather structure is
+    /// built and every 256 forward rays, so that an interrupt never waits for a long pass.
     pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
         let pass = self.film.end();
         if !self.prepare(pass, stop) {
@@ -235,6 +235,10 @@ impl<'a> Renderer<'a> {
                 light_layers: buf.lights > 0,
             };
             let (mut out, next) = camera_pass(scene, integrator, &job, stop)?;
+            // Building the gather cannot be interrupted: do not start it after a stop.
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
             let t1 = Instant::now();
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;

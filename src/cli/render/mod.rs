@@ -8,7 +8,6 @@ mod targets;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use super::RenderArgs;
@@ -22,7 +21,7 @@ use brume::integrator::{Budget, MemoryEstimate, Renderer};
 use brume::scene::LoadedScene;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
-    let stop = interrupt::install(args.quiet);
+    let interrupt = interrupt::install(args.quiet);
     let cmd = CommandLine::current();
     check_numbers(args)?;
     let loaded = brume::scene::load(&args.scene.scene, &args.scene.sets)?;
@@ -49,7 +48,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
 
     let start = Instant::now();
     let (film, interrupted, auto) =
-        pool.install(|| render(args, &loaded, &id, &plan, resumed, &stop))?;
+        pool.install(|| render(args, &loaded, &id, &plan, resumed, &interrupt))?;
     if let (Some(choice), true) = (&auto, args.verbose) {
         for line in &choice.report {
             println!("auto: {line}");
@@ -100,14 +99,14 @@ fn read_film(path: &Path) -> anyhow::Result<FilmFile> {
 }
 
 /// Builds the scene and renders the plan; returns the film (whole passes only) and whether an
-/// interrupt stopped it.
+/// interrupt stopped it (one during the build exits at once).
 fn render(
     args: &RenderArgs,
     loaded: &LoadedScene,
     id: &FilmId,
     plan: &plan::Plan,
     resumed: Option<FilmFile>,
-    stop: &AtomicBool,
+    interrupt: &interrupt::Interrupt,
 ) -> anyhow::Result<(Film, bool, Option<Choice>)> {
     let (scene, warnings) = brume::scene::build_with_warnings(loaded)?;
     for w in &warnings {
@@ -142,10 +141,12 @@ fn render(
         Budget::Passes(p) => p as u64,
         Budget::Time(t) => t.ceil() as u64,
     };
+    // Before the progress shows the render started: an interrupt now saves, not exits.
+    interrupt.rendering_starts();
     let mut progress = Progress::new("render", total, args.quiet);
     let every = args.checkpoint_every.map(|m| m * 60.0);
     let mut last_save = 0.0;
-    let interrupted = renderer.run_until(plan.budget, stop, |film, elapsed| {
+    let interrupted = renderer.run_until(plan.budget, &interrupt.stop, |film, elapsed| {
         let shown = match plan.budget {
             Budget::Passes(_) => film.passes,
             Budget::Time(_) => (elapsed as u64).min(total),
