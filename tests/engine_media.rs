@@ -4,6 +4,8 @@
 //! pure method); the next-event tests set `integrator.direct=nee`.
 
 mod common;
+#[path = "engine_media/forward_scattering.rs"]
+mod forward_scattering;
 
 use std::f64::consts::PI;
 
