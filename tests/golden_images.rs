@@ -47,6 +47,15 @@ const COMMON: [&str; 6] = [
     "integrator.max_gather_bytes=100000000",
 ];
 
+/// Scene values changed since their hashes were recorded, pinned here to the values they had
+/// (these tests check the algorithms, not the scenes' tuning): the scenes' gather radii, set
+/// by equal-time measurement (docs/performance.md, "Radius of the gathered part").
+const PINNED: &[(&str, &str)] = &[
+    ("chromatic-fog", "integrator.radius=0.03"),
+    ("fog-cube", "integrator.radius=0.01"),
+    ("fog-room-laser", "integrator.radius=0.05"),
+];
+
 fn render_hash(scene: &std::path::Path, sets: &[String]) -> u64 {
     let loaded = brume::scene::load(scene, sets).unwrap_or_else(|e| panic!("{e}"));
     let built = brume::scene::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
@@ -613,6 +622,8 @@ fn every_scene_and_estimator_is_bit_identical_to_the_recorded_images() {
             for mode in MODES {
                 let mut sets: Vec<String> = COMMON.iter().map(|s| s.to_string()).collect();
                 sets.extend(est_sets.iter().map(|s| s.to_string()));
+                let pinned = PINNED.iter().filter(|(s, _)| *s == name);
+                sets.extend(pinned.map(|(_, set)| set.to_string()));
                 sets.push(format!("integrator.mode=\"{mode}\""));
                 got.push((name.clone(), est, mode, render_hash(f, &sets)));
             }

@@ -153,38 +153,36 @@ impl<'a> Renderer<'a> {
     /// `render_pass`, abandoned (nothing added to the film, false returned) as soon as `stop`
     /// is set: checked before every pixel of the camera pass, before the gather structure is
     /// built and every 256 forward rays, so that an interrupt never waits for a long pass.
+    ///
+    /// With automatic settings, film pass `p` is pass `p + P` of the seed's sequence, where the
+    /// first P are the tuner's pilot passes. Those are rendered before the first film pass of
+    /// every process (fresh, resumed or a part) and never join the film: a pilot at the base
+    /// budgets can carry many times the variance of a chosen pass (fog-cube: 1 camera path per
+    /// pixel, 14x), and the film averages its passes with equal weights.
     pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
         let pass = self.film.end();
-        if !self.prepare(pass, stop) {
+        let pilots = self.tuner.as_ref().map_or(0, Tuner::pilot_passes);
+        if !self.prepare(pilots, stop) || !self.configure(pass + pilots) {
             return false;
         }
-        let Some((buf, work)) = self.render_into(pass, stop) else {
+        let Some((buf, _)) = self.render_into(pass + pilots, pass, stop) else {
             return false;
         };
-        if let Some(t) = &mut self.tuner {
-            t.record(pass, pixel_totals(&buf.data, buf.pixels, buf.n), work);
-        }
         self.film.add_pass(&buf);
         true
     }
 
-    /// Makes the integrator sample as pass `pass` must: an automatic setting's pilot
-    /// configuration or its choice. A render that starts after pilot passes it has not seen
-    /// (a resumed render, a `--pass-range` part) renders them first, without adding them to
-    /// the film, so that it chooses exactly as an uninterrupted run does.
-    fn prepare(&mut self, pass: u64, stop: &AtomicBool) -> bool {
-        let Some((mut next, pilots)) = self
-            .tuner
-            .as_ref()
-            .map(|t| (t.recorded(), t.pilot_passes()))
-        else {
+    /// Renders the tuner's pilot passes not yet recorded (all of them, once per process), so
+    /// that the choice is made exactly as in any other process with the same seed.
+    fn prepare(&mut self, pilots: u64, stop: &AtomicBool) -> bool {
+        let Some(mut next) = self.tuner.as_ref().map(Tuner::recorded) else {
             return true;
         };
-        while next < pass.min(pilots) {
+        while next < pilots {
             if !self.configure(next) {
                 return false;
             }
-            let Some((buf, work)) = self.render_into(next, stop) else {
+            let Some((buf, work)) = self.render_into(next, 0, stop) else {
                 return false;
             };
             self.stats.pilot_passes += 1;
@@ -193,7 +191,7 @@ impl<'a> Renderer<'a> {
             }
             next += 1;
         }
-        self.configure(pass)
+        true
     }
 
     /// Applies the tuner's configuration of `pass` (false if it cannot be built).
@@ -210,10 +208,16 @@ impl<'a> Renderer<'a> {
         self.tuner.as_ref().and_then(Tuner::choice)
     }
 
-    /// Renders pass `pass` with the integrator as configured, or None when `stop` was set.
-    fn render_into(&mut self, pass: u64, stop: &AtomicBool) -> Option<(PassBuffer, Work)> {
+    /// Renders pass `pass` of the seed's sequence with the integrator as configured, at the
+    /// radius of film pass `film_pass`, or None when `stop` was set.
+    fn render_into(
+        &mut self,
+        pass: u64,
+        film_pass: u64,
+        stop: &AtomicBool,
+    ) -> Option<(PassBuffer, Work)> {
         let (scene, integrator) = (self.scene, &self.integrator);
-        self.radius = integrator.radius.at(pass);
+        self.radius = integrator.radius.at(film_pass);
         let h = scene.camera.resolution().1;
         let mut buf = self.film.pass_buffer();
         let spp = integrator.camera_samples as f32;

@@ -69,7 +69,8 @@ fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
     let t = tempfile::tempdir().expect("tempdir");
     let d = t.path();
     write_scene(d, SCENE);
-    // 8 pilot passes (base, the fog at q = 0.25, 4x rays, 4x camera paths), then 3 more.
+    // 8 pilot passes (base, the fog at q = 0.25, 4x rays, 4x camera paths), rendered first
+    // and left out of the film, then 11 film passes.
     let out = run(
         d,
         &["--passes", "11", "--threads", "2", "-v", "-o", "one.exr"],
@@ -90,7 +91,7 @@ fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
         &["--passes", "11", "--threads", "1", "-q", "-o", "t1.exr"],
     );
     same(d, "one.exr", "t1.exr");
-    // Parts that start inside and after the pilot passes render the ones they lack first.
+    // Every part renders the pilot passes first, to choose as the single run did.
     run(d, &["--pass-range", "9..11", "-q", "-o", "c.brume"]);
     run(d, &["--pass-range", "0..3", "-q", "-o", "a.brume"]);
     run(d, &["--pass-range", "3..9", "-q", "-o", "b.brume"]);
@@ -113,7 +114,7 @@ fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
         .expect("merge");
     assert!(m.status.success());
     same(d, "one-m.exr", "m.exr");
-    // A checkpoint after 5 passes (mid-pilot), resumed to 11.
+    // A checkpoint after 5 passes, resumed to 11 (the resumed process renders the pilots again).
     run(
         d,
         &[
@@ -131,4 +132,12 @@ fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
         &["--passes", "11", "--resume", "k.brume", "-q", "-o", "r.exr"],
     );
     same(d, "one.exr", "r.exr");
+    // A render of one film pass renders the pilots first all the same and samples with the
+    // choice (pilots that joined the film would leave it at the base configuration).
+    let out = run(d, &["--passes", "1", "-v", "-o", "p1.exr"]);
+    assert!(
+        out.lines()
+            .any(|l| l.starts_with("auto: chosen from pilot passes 0..8")),
+        "{out}"
+    );
 }

@@ -1,20 +1,20 @@
 //! `"auto"` settings (`integrator.q`, `forward_rays`, `camera_samples`) chosen from pilot
 //! passes.
 //!
-//! The first passes of a render with an automatic setting are pilot passes: pairs of passes at
-//! a few configurations (every q = 1 and the scene's budgets; each automatic medium alone at
-//! q = [`Q_PILOT`]; the forward rays, or camera paths, times [`BUDGET_FACTOR`]). Each is an
-//! ordinary unbiased pass of the seed's sequence and joins the film. A pair gives an unbiased
-//! estimate of the image's variance per pass, `sum over pixels of (x1 - x2)^2 / 2`, and the
-//! passes' work counters give their cost; the models of [`model`] turn these into the chosen
-//! configuration, which every later pass uses.
+//! The first passes of the seed's sequence, in a render with an automatic setting, are pilot
+//! passes: pairs of passes at a few configurations (every q = 1 and the scene's budgets; each
+//! automatic medium alone at q = [`Q_PILOT`]; the forward rays, or camera paths, times
+//! [`BUDGET_FACTOR`]). A pair gives an unbiased estimate of the image's variance per pass,
+//! `sum over pixels of (x1 - x2)^2 / 2`, and the passes' work counters give their cost; the
+//! models of [`model`] turn these into the chosen configuration, which every film pass uses.
+//! The pilots do not join the film (`Renderer::render_pass_until`): at the base budgets one can
+//! carry many times a chosen pass's variance, and the film weighs its passes equally.
 //!
 //! Why pilot passes and not a running re-estimate: a pass's configuration must follow from the
 //! seed alone, so that a render resumed from a checkpoint, a `--pass-range` part and a merge
 //! give the same bits whatever the thread count. The choice depends on the pilot passes only,
-//! which any process can render again (a part that starts after them renders them first,
-//! without adding them); a choice that moved with every pass would make pass 1000 depend on all
-//! passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
+//! which every process renders before its first film pass; a choice that moved with every pass
+//! would make pass 1000 depend on all passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
 //! weighed by [`COST_WEIGHTS`]), not measured time, for the same reason.
 
 pub mod model;
@@ -240,6 +240,18 @@ impl Tuner {
                 report,
             };
         };
+        for ((role, c), m) in self.pilots.iter().zip(&self.measures) {
+            report.push(format!(
+                "pilot {role:?} (q {:?}, forward rays {}, camera paths {}): variance per pass \
+                 {:.4e} +- {:.1e}, cost {:.4e} s",
+                c.q,
+                c.forward_rays,
+                c.camera_samples,
+                m.variance,
+                m.se,
+                m.work.cost()
+            ));
+        }
         let mut config = base.clone();
         let (variance, cost) = self.choose_q(&mut config, b, &mut report);
         if self.auto_rays || self.auto_samples {
@@ -341,9 +353,22 @@ impl Tuner {
             (Some(gr), None) => NoiseSplit::from_forward_rays(s, n, v, k, v - gr),
             (None, Some(gs)) => NoiseSplit::from_camera_samples(s, n, v, k, v - gs),
             (None, None) => {
+                // Neither pilot bought a measurable gain: the variance is ruled by rare bright
+                // samples (fog-room-laser: the laser's light gathered on surfaces) that two
+                // passes cannot measure. Then the cheapest passes win, the most of them per
+                // second (fog-room-laser at 96 x 72: 10 000 forward rays and 1 camera path per
+                // pass, 2.7x the efficiency of 50 000 and 1; docs/study.md); keeping the base,
+                // as an earlier version did, kept paying for rays that bought nothing.
+                let f = BUDGET_FACTOR * BUDGET_FACTOR;
+                if self.auto_samples {
+                    config.camera_samples = 1;
+                }
+                if self.auto_rays {
+                    config.forward_rays = RAYS_RANGE.0.max(config.forward_rays / f);
+                }
                 report.push(format!(
-                    "budgets kept (camera paths {}, forward rays {}): more of either did not \
-                     lower the variance by {Z_SIGNIFICANT} standard errors",
+                    "budgets: the cheapest, camera paths {} and forward rays {}: more of either \
+                     did not lower the variance by {Z_SIGNIFICANT} standard errors",
                     config.camera_samples, config.forward_rays
                 ));
                 return;
@@ -406,3 +431,6 @@ pub fn pixel_totals(data: &[f32], pixels: usize, n: usize) -> Vec<f64> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests;

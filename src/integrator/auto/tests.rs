@@ -1,0 +1,75 @@
+//! The tuner's choice from synthetic pilot passes: per-pixel totals drawn with a known
+//! variance per configuration, so that the choice the models must make is known.
+
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+use super::*;
+use crate::integrator::setting::Setting;
+
+const PIXELS: usize = 4096;
+
+/// A tuner with automatic budgets only (q fixed at 1), from the default base.
+fn budget_tuner() -> Tuner {
+    let desc = IntegratorDesc {
+        q: Setting::Value(1.0),
+        ..IntegratorDesc::default()
+    };
+    let base = PassConfig {
+        q: vec![1.0],
+        forward_rays: 50_000,
+        camera_samples: 1,
+    };
+    Tuner::new(&desc, 1, base).expect("budgets are automatic")
+}
+
+/// Feeds every pilot pass: pixel values of mean 1 and variance `variance(config)` per pixel, and
+/// work that grows with the configuration's rays and camera paths.
+fn feed(t: &mut Tuner, variance: impl Fn(&PassConfig) -> f64) {
+    let mut rng = Pcg64Mcg::seed_from_u64(7);
+    for pass in 0..t.pilot_passes() {
+        let c = t.config(pass).expect("a pilot pass").clone();
+        let sd = (variance(&c) / PIXELS as f64).sqrt();
+        // Uniform noise of standard deviation sd: variance sd^2 per pixel.
+        let totals = (0..PIXELS)
+            .map(|_| 1.0 + sd * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0))
+            .collect();
+        let work = Work {
+            paths: PIXELS as u64 * c.camera_samples as u64,
+            volumes: PIXELS as u64 * c.camera_samples as u64,
+            rays: c.forward_rays,
+            hits: c.forward_rays * c.camera_samples as u64,
+        };
+        t.record(pass, totals, work);
+    }
+}
+
+#[test]
+fn budgets_that_buy_nothing_fall_to_the_cheapest_passes() {
+    let mut t = budget_tuner();
+    // The same variance whatever the budgets: neither pilot can lower it.
+    feed(&mut t, |_| 1.0);
+    let choice = t.choice().expect("chosen after the pilots");
+    assert_eq!(choice.config.camera_samples, 1, "{:?}", choice.report);
+    assert_eq!(
+        choice.config.forward_rays, RAYS_RANGE.0,
+        "{:?}",
+        choice.report
+    );
+}
+
+#[test]
+fn camera_noise_alone_buys_camera_paths() {
+    let mut t = budget_tuner();
+    // Variance 1 / camera paths: camera paths buy a measured gain and are cheap against the
+    // forward rays' work, so the search adds them.
+    feed(&mut t, |c| 1.0 / c.camera_samples as f64);
+    let choice = t.choice().expect("chosen after the pilots");
+    let c = &choice.config;
+    assert!(c.camera_samples > 1, "{:?}", choice.report);
+    // The search keeps rays within BUDGET_FACTOR^2 of the base.
+    assert_eq!(
+        c.forward_rays, 50_000,
+        "rays not measured by a gain keep the base"
+    );
+}
