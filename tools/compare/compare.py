@@ -10,6 +10,23 @@ Usage (from the repository root, with the venv of tools/compare/requirements.txt
       scenes/fog-cube.toml --variant llvm_ad_spectral --clock cpu --runs 3 --times 5 15 60 \
       --ref-seconds 120 --out docs/images/perf-fog-cube-llvm
 
+  DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so .venv/bin/python tools/compare/compare.py \
+      scenes/chromatic-fog.toml --integrator volpathmis --spot-profile exact --variant llvm_ad_spectral \
+      --clock cpu --runs 3 --times 5 15 60 --ref-seconds 120 --out docs/images/perf-chromatic-fog
+
+Mitsuba's integrator and spots:
+- --integrator volpath (default) or volpathmis. Mitsuba's volpath draws free-flight distances
+  from the extinction of the first wavelength a path carries alone, which is noisy when the
+  extinction varies with wavelength (chromatic-fog); volpathmis combines all of them (spectral
+  MIS). Grey media give both the same image. The choice is written to refs.json (a reused
+  Mitsuba reference must have been rendered with it), -agreement.json, -summary.json,
+  -rungs.jsonl and the CSV (column mitsuba_integrator, Mitsuba's rows).
+- --spot-profile ramp (default: Mitsuba's own soft edge, linear in the angle, as the grey scenes
+  were always compared) or exact (brume's edge, linear in cos theta, through a projected
+  texture; see mitsuba_scene.spot_profile_texture). The ramp emits 0.3 % less than brume for
+  fog-room-laser's 35 deg spots with 5 deg edges, 1.3 % less for chromatic-fog's 4 deg spot with
+  a 1 deg edge: use exact there, or the agreement check reads that deficit as k.
+
 Clocks (--clock):
 - wall (default): wall-clock seconds, as below.
 - cpu: each renderer is charged the CPU seconds of its own process (user + system, all threads),
@@ -135,12 +152,14 @@ def brume_render(
 class Mitsuba:
     def __init__(
         self, scene: Path, variant: str, chunk_spp: int, floor: str, drop: list[int], calib_s: float, laser_r: float | None,
-        clock: str = "wall",
+        clock: str = "wall", integrator: str = "volpath", spot_profile: str = "ramp",
     ):
         import mitsuba as mi
 
         mi.set_variant(variant)
         self.mi = mi
+        self.integrator = integrator
+        self.spot_profile = spot_profile
         desc = tomllib.loads(scene.read_text())
         glossy = any(m.get("type") == "glossy" for m in desc.get("materials", {}).values())
         self.laser_r = laser_r
@@ -162,7 +181,9 @@ class Mitsuba:
             print(f"mitsuba: native-floor cost {self.s_per_spp:.3f} s/spp ({n * chunk_spp} spp)", flush=True)
 
     def _dict(self, scene, spp, floor, drop):
-        d = mitsuba_scene.load(scene, spp, floor=floor, laser_radius=self.laser_r)
+        d = mitsuba_scene.load(
+            scene, spp, floor=floor, laser_radius=self.laser_r, integrator=self.integrator, spot_profile=self.spot_profile
+        )
         for i in drop:
             d.pop(f"light{i}", None)
         return d
@@ -224,6 +245,8 @@ def main() -> None:
     ap.add_argument("scene", type=Path)
     ap.add_argument("--brume", default="target/release/brume")
     ap.add_argument("--variant", default="scalar_spectral")
+    ap.add_argument("--integrator", choices=list(mitsuba_scene.INTEGRATORS), default="volpath", help="Mitsuba's integrator: volpath, or volpathmis (spectral MIS, for media whose extinction varies with wavelength)")
+    ap.add_argument("--spot-profile", choices=list(mitsuba_scene.SPOT_PROFILES), default="ramp", help="Mitsuba's spot edges: its own ramp (linear in angle) or brume's (linear in cos theta, by a projected texture)")
     ap.add_argument("--chunk-spp", type=int, default=4)
     ap.add_argument("--ref-seconds", type=float, default=120.0, help="brume reference (and Mitsuba's, unless --mitsuba-ref-seconds)")
     ap.add_argument("--mitsuba-ref-seconds", type=float, default=None, help="Mitsuba reference, wall-clock")
@@ -253,7 +276,8 @@ def main() -> None:
     if a.brume_only and not a.reuse_refs:
         ap.error("--brume-only needs --reuse-refs")
     mit = None if a.brume_only else Mitsuba(
-        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius, a.clock
+        a.scene, a.variant, a.chunk_spp, a.floor, a.drop_light, a.calib_seconds, a.mitsuba_laser_radius, a.clock,
+        a.integrator, a.spot_profile,
     )
 
     # References (cached with their times for --reuse-refs).
@@ -262,6 +286,11 @@ def main() -> None:
     for who in ("brume", "mitsuba"):
         if who in meta and meta[who].get("clock", "wall") != a.clock:
             ap.error(f"--reuse-refs: the stored {who} reference was timed on the {meta[who].get('clock', 'wall')} clock, not {a.clock}")
+    if "mitsuba" in meta and not a.brume_only:
+        for key, want, old in (("integrator", a.integrator, "volpath"), ("spot_profile", a.spot_profile, "ramp")):
+            # refs.json written before these options existed: their only behaviour was the default.
+            if meta["mitsuba"].get(key, old) != want:
+                ap.error(f"--reuse-refs: the stored Mitsuba reference was rendered with {key} {meta['mitsuba'].get(key, old)}, not {want}")
     if "brume" in meta:
         b_ref, b_ref_t = read_rgb(work / "brume-ref.exr"), meta["brume"]["seconds"]
     else:
@@ -272,7 +301,10 @@ def main() -> None:
     else:
         m_ref, m_ref_t, m_ref_spp = mit.render_wall(a.mitsuba_ref_seconds or a.ref_seconds)
         mit.mi.util.write_bitmap(str(work / "mitsuba-ref.exr"), m_ref.astype(np.float32))
-        meta["mitsuba"] = {"seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor, "clock": a.clock, "variant": a.variant}
+        meta["mitsuba"] = {
+            "seconds": m_ref_t, "spp": m_ref_spp, "floor": a.floor, "clock": a.clock, "variant": a.variant,
+            "integrator": a.integrator, "spot_profile": a.spot_profile,
+        }
     if mit is not None and "mitsuba" in meta and mit.seed < 10**7:
         # A reused reference was rendered with seeds 2, 3, ... of an earlier process: start the
         # ladder's chunks far beyond them, or its images would share samples with the reference.
@@ -335,11 +367,13 @@ def main() -> None:
             "run": run, "budget_s": t, "brume_s": bt, "brume_mse_own": own, "mitsuba_s": mt, "mitsuba_spp": spp,
             "mitsuba_mse_own_ref": errors(img, m_ref, away, beam), "mitsuba_own_share": ff,
             "brume_ref_mean": float(b_ref.mean()), "mitsuba_ref_mean": float(m_ref.mean()),
+            "mitsuba_integrator": a.integrator, "mitsuba_spot_profile": a.spot_profile,
         }) + "\n")
         rungs.flush()
         img_m[len(rows)] = img
         rows.append({
             "renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": mt, "spp": spp,
+            "mitsuba_integrator": a.integrator,
             "_raw": errors(k * img, b_ref, away, beam),
             "own_away": np.sqrt(mse(img, m_ref, away) * ff) / m_ref[away].mean(),
         })
@@ -404,6 +438,8 @@ def main() -> None:
         "mitsuba_ref_seconds": m_ref_t,
         "mitsuba_ref_spp": m_ref_spp,
         "mitsuba_variant": a.variant,
+        "mitsuba_integrator": a.integrator,
+        "mitsuba_spot_profile": a.spot_profile,
         "mitsuba_floor": a.floor,
         "mitsuba_native_floor_s_per_spp": mit.s_per_spp if mit else None,
         "brume_set": a.brume_set,
@@ -430,12 +466,14 @@ def main() -> None:
     csv_path = a.out.parent / (a.out.name + ".csv")
     with csv_path.open("w", newline="") as f:
         wr = csv.writer(f)
-        wr.writerow(cols[:-1] + ["rel_rmse_away_vs_own_ref"])
+        wr.writerow(cols[:-1] + ["rel_rmse_away_vs_own_ref", "mitsuba_integrator"])
         for r in rows:
-            wr.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in cols])
+            wr.writerow([f"{r[c]:.5g}" if isinstance(r[c], float) else r[c] for c in cols] + [r.get("mitsuba_integrator", "")])
     for r in rows:
         print(", ".join(f"{c}={r[c]:.4g}" if isinstance(r[c], float) else f"{c}={r[c]}" for c in cols), flush=True)
     summary = summarise(rows, a.clock)
+    summary["mitsuba_integrator"] = a.integrator
+    summary["mitsuba_spot_profile"] = a.spot_profile
     (a.out.parent / (a.out.name + "-summary.json")).write_text(json.dumps(summary, indent=2))
     print(json.dumps(summary, indent=2), flush=True)
     plot(rows, a.out.parent / (a.out.name + ".png"), a.scene.stem, bool(lasers), a.clock)

@@ -1,32 +1,53 @@
-"""Translate a brume scene TOML (the subset fog-cube and fog-room-laser use) into a Mitsuba 3 dict.
+"""Translate a brume scene TOML (the subset fog-cube, fog-room-laser and chromatic-fog use) into a
+Mitsuba 3 dict.
 
 Mirrored exactly:
 - Cameras: `orthographic` (position, look_at, up, view size) and `perspective` (brume's fov is the
   vertical one: Mitsuba `fov_axis = "y"`); resolution; box pixel filter in both.
-- Shapes: a box of fog (`cube` with a `null` BSDF and an interior `homogeneous` medium:
-  sigma_t = sigma_s + sigma_a, albedo = sigma_s / sigma_t, `hg` phase with the same g) and quads
+- Shapes: a box of fog (`cube` with a `null` BSDF and an interior `homogeneous` medium) and quads
   (`rectangle`, normal local +Z like brume's), with brume's transform order: scale, then rotate
   about world X, then Y, then Z (R = Rz Ry Rx), then translate.
+- Media: sigma_t = sigma_s + sigma_a, albedo = sigma_s / sigma_t, `hg` phase with the same g.
+  Grey media (both coefficients numbers) give plain floats, the dict fog-cube and fog-room-laser
+  have always had. A coefficient given as a spectrum (a `[spectra]` name: `power_law`, `value`,
+  `file` or `builtin`, times its `scale`; or a built-in name or CSV file) is what brume makes of
+  it: one value per film bin, the exact average over the bin (a power law's closed-form
+  integral, a table's piecewise-linear one), used for every wavelength inside the bin. Mitsuba
+  gets those same steps as `irregular` spectra for sigma_t and albedo (its `homogeneous` takes a
+  spectrum for both; its `scale` is a float only), so both render brume's binned medium, not the
+  continuous law (for chromatic-fog's lambda^-4 over 12.5 nm bins the average is at most 0.09 %
+  above the law at the bin's centre, so that choice hardly matters there). Outside the film's range the steps keep their end values rather
+  than dropping to 0: no light exists there, but `volpath` draws free-flight distances from the
+  extinction of the first wavelength of a path alone, and a zero there would stop the path from
+  ever scattering for its other wavelengths (a bias, not just noise).
 - The camera and the lights get the medium of the box that contains them (Mitsuba needs to be told
   that a sensor starts inside a medium).
 - Light spectra and units. brume averages every spectrum over its film bins (32 bins over
   380-780 nm here) and normalises each light's shape so that its integral over that range is 1,
   times `power` (W) or `irradiance` (W/m^2). Mitsuba gets exactly that piecewise-constant
   spectrum (an `irregular` spectrum with steps at the bin edges, zero outside the film's range),
-  already scaled to brume's radiometric units. All surfaces and media here are grey, so
-  Mitsuba's continuous integration of these steps against the CIE 1931 functions equals brume's
-  per-bin weights, and both normalise Y so that a constant radiance of 1 has Y = 1: the two
-  images should agree with a scale k = 1 (compare.py fits k and reports it as a check).
+  already scaled to brume's radiometric units. Surfaces are grey and media are constant within
+  each bin, so every radiance in the scene is constant within each bin too, and Mitsuba's
+  continuous integration of these steps against the CIE 1931 functions equals brume's per-bin
+  weights; both normalise Y so that a constant radiance of 1 has Y = 1: the two images should
+  agree with a scale k = 1 (compare.py fits k and reports it as a check).
 - Spot lights: brume's `power` is the total flux; Mitsuba's `intensity` is W/sr on the axis, so
   intensity = power / (solid-angle integral of brume's profile), with brume's profile (1 inside
-  angle - soft_edge, falling linearly in cos(theta) to 0 at angle).
+  angle - soft_edge, falling linearly in cos(theta) to 0 at angle). With spot_profile="exact"
+  the soft edge is brume's too (a projected texture, `spot_profile_texture`); with the default
+  "ramp" it is Mitsuba's own (see below).
 - Lambert surfaces: `diffuse` with a constant (spectrally flat) reflectance.
 - Path depth: brume's integrator.max_depth (32 by default) + 1 (Mitsuba counts the camera vertex).
 
 Approximations:
-- Spot soft edge: Mitsuba's falloff is linear in the angle between beam_width and cutoff_angle,
-  brume's linear in cos(theta); at mid-edge (32.5 deg of 30-35) brume gives 0.517, Mitsuba 0.5.
-  Only the rim of each pool of light differs (< 2 % there).
+- Spot soft edge (spot_profile="ramp", the default): Mitsuba's falloff is linear in the angle
+  between beam_width and cutoff_angle, brume's linear in cos(theta); at mid-edge (32.5 deg of
+  30-35) brume gives 0.517, Mitsuba 0.5. The intensity on the axis is brume's, so Mitsuba's spot
+  emits less in all: 0.34 % for fog-room-laser's 35 deg spots with 5 deg edges (only the rim of
+  each pool of light differs, by up to 6 % at its outer edge), but 1.3 % for chromatic-fog's 4 deg
+  spot with a 1 deg edge (28 % of its flux is in the edge, up to 11 % less at the rim): brume /
+  Mitsuba came out 1.012-1.015 on that scene's wall spot with the ramp, 1.00 with the exact
+  profile. spot_profile="exact" removes the difference.
 - Laser: Mitsuba has no collimated beam of finite radius; it is a `spot` (a point source) at the
   laser's origin with a uniform cone whose radius reaches `radius` at the far wall (cutoff =
   beam_width = atan(radius / L), L = distance to the first wall along the beam), carrying the
@@ -151,18 +172,31 @@ def light_spectrum(desc: dict, base: Path, ref, grid: Grid) -> np.ndarray:
     return bins / (bins.sum() * grid.width)
 
 
-def irregular(bins: np.ndarray, grid: Grid, scale: float) -> dict:
-    """Piecewise-constant spectrum over the film's bins, zero outside (Mitsuba interpolates
-    linearly between the given points: each edge gets two points 1e-3 nm apart)."""
+# Mitsuba's spectral variants sample wavelengths over the CIE tables' range, 360-830 nm.
+_MITSUBA_LAMBDA = (360.0, 830.0)
+
+
+def irregular(bins: np.ndarray, grid: Grid, scale: float, outside: str = "zero") -> dict:
+    """Piecewise-constant spectrum over the film's bins (Mitsuba interpolates linearly between
+    the given points: each edge gets two points 1e-3 nm apart). Outside the film's range it is
+    zero (`outside="zero"`, for emission: brume's lights emit nothing there), or holds the end
+    bins' values out to Mitsuba's whole range (`outside="clamp"`, for medium coefficients: see
+    `_coefficient_spectrum`)."""
     eps = 1e-3
-    lam = [grid.lo - 2 * eps]
-    val = [0.0]
+    if outside == "zero":
+        lam, val = [grid.lo - 2 * eps], [0.0]
+    else:
+        lam, val = [min(_MITSUBA_LAMBDA[0], grid.lo) - 1.0], [bins[0] * scale]
     for i, v in enumerate(bins):
         a, b = grid.edges[i], grid.edges[i + 1]
         lam += [a + (eps if i > 0 else 0.0), b - (eps if i < len(bins) - 1 else 0.0)]
         val += [v * scale, v * scale]
-    lam.append(grid.hi + 2 * eps)
-    val.append(0.0)
+    if outside == "zero":
+        lam.append(grid.hi + 2 * eps)
+        val.append(0.0)
+    else:
+        lam.append(max(_MITSUBA_LAMBDA[1], grid.hi) + 1.0)
+        val.append(bins[-1] * scale)
     return {
         "type": "irregular",
         "wavelengths": ", ".join(f"{x:.6f}" for x in lam),
@@ -170,12 +204,144 @@ def irregular(bins: np.ndarray, grid: Grid, scale: float) -> dict:
     }
 
 
+def power_law_bins(k: float, lambda_ref: float, p: float, grid: Grid) -> np.ndarray:
+    """brume's `power_law` spectrum, k (lambda / lambda_ref)^-p, as the exact average of the law
+    over each film bin (the closed-form integral src/spectrum/analytic.rs uses), not its value
+    at the bin's centre (for p = 4 over 12.5 nm bins they differ by at most 0.09 %)."""
+    a, b = grid.edges[:-1], grid.edges[1:]
+    if abs(p - 1.0) < 1e-12:
+        integral = lambda_ref * np.log(b / a)
+    else:
+        integral = lambda_ref**p * (b ** (1.0 - p) - a ** (1.0 - p)) / (1.0 - p)
+    return k * integral / (b - a)
+
+
+def _table_bins(name: str, base: Path, grid: Grid) -> np.ndarray:
+    """Bin averages of a spectrum CSV: one of brume's built-in illuminant names (which brume
+    tries first, ignoring case) or a file relative to the scene."""
+    if ":" in name:
+        raise NotImplementedError(f"spectrum {name!r}: a CSV column other than the first is not translated")
+    builtin = {k.lower(): v for k, v in _BUILTIN_SPECTRA.items()}
+    path = REPO / "spectra" / builtin[name.lower()] if name.lower() in builtin else base / name
+    lam, val = _read_table(path)
+    return bin_averages(lam, val, grid.edges)
+
+
+def coefficient(desc: dict, base: Path, ref, grid: Grid) -> float | np.ndarray:
+    """brume's per-bin values of a medium coefficient (1/m) given as `ref`: a number stays a
+    plain float (a grey medium), anything spectral becomes an array over the film's bins, as
+    src/scene/spectra.rs resolves it (a name from [spectra] first, with its optional `scale`,
+    else a built-in name or CSV file)."""
+    if isinstance(ref, (int, float)) and not isinstance(ref, bool):
+        return float(ref)
+    if not isinstance(ref, str):
+        # An RGB triple would need brume's own "unbounded" RGB-to-spectrum upsampling.
+        raise NotImplementedError(f"medium coefficient {ref!r}: only numbers and named spectra are translated")
+    named = desc.get("spectra", {}).get(ref)
+    if named is None:
+        return _table_bins(ref, base, grid)
+    scale = float(named.get("scale", 1.0))
+    if "column" in named:
+        raise NotImplementedError(f"spectra.{ref}: a CSV column other than the first is not translated")
+    if "power_law" in named:
+        pl = named["power_law"]
+        return power_law_bins(float(pl["k"]), float(pl.get("lambda_ref", 550.0)), float(pl["p"]), grid) * scale
+    if "value" in named:
+        return float(named["value"]) * scale
+    if "file" in named or "builtin" in named:
+        return _table_bins(named.get("file", named.get("builtin")), base, grid) * scale
+    raise NotImplementedError(f"spectra.{ref}: only power_law, value, file and builtin spectra are translated")
+
+
+def _coefficient_spectrum(bins: np.ndarray, grid: Grid):
+    """A per-bin medium parameter for Mitsuba: a float when it is the same in every bin, else a
+    piecewise-constant spectrum. Outside the film's range it keeps its end bins' values instead
+    of dropping to zero: no light is emitted there, so those values never reach the image, but
+    Mitsuba's `volpath` draws free-flight distances from the extinction of the first of the
+    wavelengths a path carries alone; with that extinction 0 the path would never scatter for
+    the other wavelengths it carries (which may lie inside the range), a bias."""
+    if np.all(bins == bins[0]):
+        return float(bins[0])
+    return irregular(bins, grid, 1.0, outside="clamp")
+
+
+def medium(desc: dict, base: Path, m: dict, grid: Grid) -> dict:
+    """Mitsuba's `homogeneous` medium for brume medium `m` (sigma_s, sigma_a, g)."""
+    unsupported = [k for k in ("phase", "droplets", "visibility", "albedo") if k in m]
+    if unsupported:
+        raise NotImplementedError(f"medium keys {unsupported} are not translated")
+    phase = {"type": "hg", "g": m.get("g", 0.0)}
+    ss = coefficient(desc, base, m.get("sigma_s", 0.0), grid)
+    sa = coefficient(desc, base, m.get("sigma_a", 0.0), grid)
+    if isinstance(ss, float) and isinstance(sa, float):
+        # Grey: exactly the dict the grey scenes (fog-cube, fog-room-laser) have always used,
+        # from the TOML's own numbers when both are numbers (a named constant: its value).
+        raw = (m.get("sigma_s", 0.0), m.get("sigma_a", 0.0))
+        if not all(isinstance(x, (int, float)) for x in raw):
+            raw = (ss, sa)
+        st = raw[0] + raw[1]
+        return {"type": "homogeneous", "sigma_t": st, "albedo": raw[0] / st, "phase": phase}
+    # Spectral: brume keeps one sigma_s and one sigma_a per bin and uses them for every
+    # wavelength inside the bin, so Mitsuba gets those same steps. Its `homogeneous` medium takes
+    # sigma_t (float or spectrum; `scale` is a float only) and albedo (float, spectrum or volume).
+    ss = np.broadcast_to(np.asarray(ss, dtype=float), (grid.n,))
+    sa = np.broadcast_to(np.asarray(sa, dtype=float), (grid.n,))
+    st = ss + sa
+    albedo = np.divide(ss, st, out=np.zeros(grid.n), where=st > 0)
+    return {
+        "type": "homogeneous",
+        "sigma_t": _coefficient_spectrum(st, grid),
+        "albedo": _coefficient_spectrum(albedo, grid),
+        "phase": phase,
+    }
+
+
 def spot_norm(angle_deg: float, soft_deg: float) -> float:
     """Solid-angle integral of brume's spot profile (sr), as src/light/spot.rs defines it."""
-    edge = min(max(angle_deg, 0.01), 180.0)
-    full = min(max(edge - max(soft_deg, 0.0), 0.0), edge)
+    edge, full = _spot_angles(angle_deg, soft_deg)
     ce, cf = math.cos(math.radians(edge)), math.cos(math.radians(full))
     return 2 * math.pi * ((1 - cf) + 0.5 * (cf - ce))
+
+
+def _spot_angles(angle_deg: float, soft_deg: float) -> tuple[float, float]:
+    """brume's (edge, full-intensity) half-angles of a cone, in degrees, clamped as
+    src/light/spot.rs clamps them."""
+    edge = min(max(angle_deg, 0.01), 180.0)
+    return edge, min(max(edge - max(soft_deg, 0.0), 0.0), edge)
+
+
+def spot_profile_texture(mi, angle_deg: float, soft_deg: float, n: int = 512) -> dict | None:
+    """A texture that turns Mitsuba's spot ramp into brume's, or None when they already agree
+    (a hard edge).
+
+    Mitsuba's spot falls off linearly in the angle theta between beam_width and cutoff_angle;
+    brume's linearly in cos(theta). For a wide cone with a thin edge the difference is small
+    (35 deg with a 5 deg edge: Mitsuba emits 0.34 % less than brume), but for a narrow cone
+    whose soft edge is a large part of it, it is not: 4 deg with a 1 deg edge puts 28 % of the
+    flux in the edge and Mitsuba emits 1.3 % less. Mitsuba's spot multiplies its intensity by an
+    optional texture looked up at uv = 0.5 + 0.5 (x, y) / (z tan(cutoff)) of the local direction,
+    so a bitmap holding brume's profile over Mitsuba's at each texel's angle makes the two
+    equal (to bilinear interpolation between 512^2 texels, far below the noise)."""
+    edge, full = _spot_angles(angle_deg, soft_deg)
+    if full >= edge:
+        return None
+    if edge >= 89.0:
+        raise NotImplementedError("exact spot profile: the uv projection needs a cone under 89 deg")
+    c, b = math.radians(edge), math.radians(full)
+    t = (np.arange(n) + 0.5) / n  # texel centres, as Mitsuba's bitmap places them
+    u, v = np.meshgrid(t, t)
+    theta = np.arctan(2.0 * np.hypot(u - 0.5, v - 0.5) * math.tan(c))
+    ramp = (c - theta) / (c - b)
+    cosine = (np.cos(theta) - math.cos(c)) / (math.cos(b) - math.cos(c))
+    # At the cut-off both reach 0; their ratio tends to sin(c) (c - b) / (cos b - cos c). Texels
+    # beyond it hold that limit, so interpolating at the rim does not pull towards 0 (Mitsuba
+    # emits nothing outside the cone whatever the texture says).
+    rim = math.sin(c) * (c - b) / (math.cos(b) - math.cos(c))
+    inside = (theta > b) & (theta < c)
+    ratio = np.where(theta <= b, 1.0, rim)
+    ratio[inside] = cosine[inside] / ramp[inside]
+    bitmap = mi.Bitmap(np.ascontiguousarray(ratio[..., None], dtype=np.float32))
+    return {"type": "bitmap", "bitmap": bitmap, "raw": True, "filter_type": "bilinear", "wrap_mode": "clamp"}
 
 
 def _inside_box(p, box: dict) -> bool:
@@ -262,27 +428,40 @@ def _materials(mi, desc: dict, base: Path, floor: str) -> dict:
     return bsdfs
 
 
+INTEGRATORS = ("volpath", "volpathmis")
+SPOT_PROFILES = ("ramp", "exact")
+
+
 def load(
-    scene_path: Path, spp: int, overrides: dict | None = None, floor: str = "exact", laser_radius: float | None = None
+    scene_path: Path,
+    spp: int,
+    overrides: dict | None = None,
+    floor: str = "exact",
+    laser_radius: float | None = None,
+    integrator: str = "volpath",
+    spot_profile: str = "ramp",
 ) -> dict:
     """Returns the Mitsuba scene dict for `scene_path` (the variant must already be set).
     `laser_radius` replaces the lasers' radius (a wider cone converges faster in Mitsuba: a
-    check of the light the beam scatters into the room, not the scene as specified)."""
+    check of the light the beam scatters into the room, not the scene as specified).
+    `integrator`: `volpath`, or `volpathmis` (spectral MIS over the wavelengths a path carries,
+    the one meant for media whose extinction varies with wavelength); same max_depth.
+    `spot_profile`: "ramp" keeps Mitsuba's own soft edge (linear in the angle; what the grey
+    scenes have always been compared with), "exact" gives spots brume's edge (linear in
+    cos theta) through a projected texture (`spot_profile_texture`)."""
     import mitsuba as mi
 
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"integrator {integrator!r}: one of {INTEGRATORS}")
+    if spot_profile not in SPOT_PROFILES:
+        raise ValueError(f"spot_profile {spot_profile!r}: one of {SPOT_PROFILES}")
     desc = tomllib.loads(scene_path.read_text())
     base = scene_path.parent
     grid = Grid(desc.get("film", {}))
     max_depth = desc.get("integrator", {}).get("max_depth", 32)
-    d: dict = {"type": "scene", "integrator": {"type": "volpath", "max_depth": max_depth + 1}}
+    d: dict = {"type": "scene", "integrator": {"type": integrator, "max_depth": max_depth + 1}}
     for name, m in desc.get("media", {}).items():
-        st = m["sigma_s"] + m["sigma_a"]
-        d[f"medium_{name}"] = {
-            "type": "homogeneous",
-            "sigma_t": st,
-            "albedo": m["sigma_s"] / st,
-            "phase": {"type": "hg", "g": m.get("g", 0.0)},
-        }
+        d[f"medium_{name}"] = medium(desc, base, m, grid)
 
     boxes = [s for s in desc.get("shapes", []) if s["type"] == "box" and "interior" in s]
 
@@ -349,6 +528,9 @@ def load(
                 "beam_width": beam,
                 "intensity": irregular(shape, grid, float(l["power"]) / norm),
             }
+            if kind == "spot" and spot_profile == "exact":
+                if (tex := spot_profile_texture(mi, angle, soft)) is not None:
+                    em["texture"] = tex
             if (m := medium_at(pos)) is not None:
                 em["medium"] = m
         else:
