@@ -154,35 +154,44 @@ impl<'a> Renderer<'a> {
     /// is set: checked before every pixel of the camera pass, before the gather structure is
     /// built and every 256 forward rays, so that an interrupt never waits for a long pass.
     ///
-    /// With automatic settings, film pass `p` is pass `p + P` of the seed's sequence, where the
-    /// first P are the tuner's pilot passes. Those are rendered before the first film pass of
-    /// every process (fresh, resumed or a part) and never join the film: a pilot at the base
-    /// budgets can carry many times the variance of a chosen pass (fog-cube: 1 camera path per
-    /// pixel, 14x), and the film averages its passes with equal weights.
+    /// With automatic budgets, film pass `p` is pass `p + P` of the seed's sequence, where the
+    /// first P are the tuner's pilot passes, rendered before the first film pass of every
+    /// process (fresh, resumed or a part) and left out of the film: a pilot at the base budgets
+    /// can carry many times a chosen pass's variance (fog-cube: 1 camera path per pixel, 14x),
+    /// and the film weighs its passes equally. With q alone automatic, the pilots sample at the
+    /// scene's budgets and are film passes like any other (`Tuner::pilots_join_film`).
     pub fn render_pass_until(&mut self, stop: &AtomicBool) -> bool {
         let pass = self.film.end();
-        let pilots = self.tuner.as_ref().map_or(0, Tuner::pilot_passes);
-        if !self.prepare(pilots, stop) || !self.configure(pass + pilots) {
+        let seq = pass + self.tuner.as_ref().map_or(0, Tuner::film_offset);
+        if !self.prepare(seq, stop) || !self.configure(seq) {
             return false;
         }
-        let Some((buf, _)) = self.render_into(pass + pilots, pass, stop) else {
+        let Some((buf, work)) = self.render_into(seq, pass, stop) else {
             return false;
         };
+        if let Some(t) = &mut self.tuner {
+            t.record(seq, pixel_totals(&buf.data, buf.pixels, buf.n), work);
+        }
         self.film.add_pass(&buf);
         true
     }
 
-    /// Renders the tuner's pilot passes not yet recorded (all of them, once per process), so
-    /// that the choice is made exactly as in any other process with the same seed.
-    fn prepare(&mut self, pilots: u64, stop: &AtomicBool) -> bool {
-        let Some(mut next) = self.tuner.as_ref().map(Tuner::recorded) else {
+    /// Renders, without adding them to the film, the pilot passes before pass `seq` of the
+    /// sequence that this process has not recorded (a resumed render, a part, or every pilot
+    /// when they are not film passes), so that it chooses exactly as any other process does.
+    fn prepare(&mut self, seq: u64, stop: &AtomicBool) -> bool {
+        let Some((mut next, pilots)) = self
+            .tuner
+            .as_ref()
+            .map(|t| (t.recorded(), t.pilot_passes()))
+        else {
             return true;
         };
-        while next < pilots {
+        while next < seq.min(pilots) {
             if !self.configure(next) {
                 return false;
             }
-            let Some((buf, work)) = self.render_into(next, 0, stop) else {
+            let Some((buf, work)) = self.render_into(next, next, stop) else {
                 return false;
             };
             self.stats.pilot_passes += 1;

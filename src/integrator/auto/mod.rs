@@ -7,14 +7,16 @@
 //! [`BUDGET_FACTOR`]). A pair gives an unbiased estimate of the image's variance per pass,
 //! `sum over pixels of (x1 - x2)^2 / 2`, and the passes' work counters give their cost; the
 //! models of [`model`] turn these into the chosen configuration, which every film pass uses.
-//! The pilots do not join the film (`Renderer::render_pass_until`): at the base budgets one can
-//! carry many times a chosen pass's variance, and the film weighs its passes equally.
+//! With automatic budgets the pilots do not join the film (`Renderer::render_pass_until`): at
+//! the base budgets one can carry many times a chosen pass's variance, and the film weighs its
+//! passes equally. With q alone automatic they sample at the scene's budgets, and are film
+//! passes (leaving them out cost fog-cube 13 % of its efficiency in a 20 CPU-s render).
 //!
 //! Why pilot passes and not a running re-estimate: a pass's configuration must follow from the
 //! seed alone, so that a render resumed from a checkpoint, a `--pass-range` part and a merge
 //! give the same bits whatever the thread count. The choice depends on the pilot passes only,
-//! which every process renders before its first film pass; a choice that moved with every pass
-//! would make pass 1000 depend on all passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
+//! which every process renders (or has in its film) before it needs the choice; a choice that
+//! moved with every pass would make pass 1000 depend on all passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
 //! weighed by [`COST_WEIGHTS`]), not measured time, for the same reason.
 
 pub mod model;
@@ -174,6 +176,22 @@ impl Tuner {
     /// Number of pilot passes (the film's first passes).
     pub fn pilot_passes(&self) -> u64 {
         self.pilots.len() as u64 * REPEATS
+    }
+
+    /// Whether the pilot passes are film passes: only when the budgets are the scene's (q
+    /// alone automatic), so that every pilot samples about as well as a chosen pass. Pilots at
+    /// the base budgets are left out (`Renderer::render_pass_until`).
+    pub fn pilots_join_film(&self) -> bool {
+        !(self.auto_rays || self.auto_samples)
+    }
+
+    /// Film pass p is pass `p + film_offset()` of the seed's sequence.
+    pub fn film_offset(&self) -> u64 {
+        if self.pilots_join_film() {
+            0
+        } else {
+            self.pilot_passes()
+        }
     }
 
     /// Pilot passes recorded so far; pass `recorded()` is the next one to record.
