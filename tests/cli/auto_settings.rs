@@ -66,18 +66,35 @@ fn same(dir: &Path, a: &str, b: &str) {
 
 #[test]
 fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
-    let t = tempfile::tempdir().expect("tempdir");
-    let d = t.path();
-    write_scene(d, SCENE);
     // 8 pilot passes (base, the fog at q = 0.25, 4x rays, 4x camera paths), rendered first
     // and left out of the film, then 11 film passes.
+    check_every_path(SCENE, "0..8", true);
+}
+
+#[test]
+fn automatic_q_alone_is_chosen_the_same_way_by_every_path_to_an_image() {
+    // Fixed budgets: 4 pilot passes (base, the fog at q = 0.25), the film's first 4.
+    let scene = SCENE
+        .replace(r#"forward_rays = "auto""#, "forward_rays = 3000")
+        .replace(r#"camera_samples = "auto""#, "camera_samples = 2");
+    check_every_path(&scene, "0..4", false);
+}
+
+/// Renders `scene` in one go on 2 and 1 threads, in parts merged out of order and resumed
+/// from a checkpoint, and checks the images are the same bytes; `pilots` is the pilot range
+/// the choice names, and `left_out` whether the pilots stay out of the film.
+fn check_every_path(scene: &str, pilots: &str, left_out: bool) {
+    let t = tempfile::tempdir().expect("tempdir");
+    let d = t.path();
+    write_scene(d, scene);
     let out = run(
         d,
         &["--passes", "11", "--threads", "2", "-v", "-o", "one.exr"],
     );
+    let chosen_line = format!("auto: chosen from pilot passes {pilots}");
     let chosen = out
         .lines()
-        .find(|l| l.starts_with("auto: chosen from pilot passes 0..8"))
+        .find(|l| l.starts_with(&chosen_line))
         .unwrap_or_else(|| panic!("no choice printed: {out}"));
     let exr = std::fs::read(d.join("one.exr")).expect("one.exr");
     let text = String::from_utf8_lossy(&exr);
@@ -132,12 +149,9 @@ fn automatic_settings_are_chosen_the_same_way_by_every_path_to_an_image() {
         &["--passes", "11", "--resume", "k.brume", "-q", "-o", "r.exr"],
     );
     same(d, "one.exr", "r.exr");
-    // A render of one film pass renders the pilots first all the same and samples with the
-    // choice (pilots that joined the film would leave it at the base configuration).
+    // A render of one film pass: pilots left out of the film are rendered first all the same
+    // and the pass samples with the choice; pilots in the film make that pass the first pilot.
     let out = run(d, &["--passes", "1", "-v", "-o", "p1.exr"]);
-    assert!(
-        out.lines()
-            .any(|l| l.starts_with("auto: chosen from pilot passes 0..8")),
-        "{out}"
-    );
+    let chose = out.lines().any(|l| l.starts_with(&chosen_line));
+    assert_eq!(chose, left_out, "{out}");
 }
