@@ -345,6 +345,27 @@ impl Tuner {
         (variance, cost)
     }
 
+    /// The automatic budgets when neither budget pilot bought a measurable gain: the variance
+    /// is then ruled by rare bright samples (fog-room-laser: the laser's light gathered on
+    /// surfaces) that two passes cannot measure, and the cheapest passes win, the most of them
+    /// per second (fog-room-laser at 96 x 72: 10 000 forward rays and 1 camera path per pass,
+    /// 2.7x the efficiency of 50 000 and 1; docs/study.md). Keeping the base, as an earlier
+    /// version did, kept paying for rays that bought nothing.
+    fn cheapest(&self, config: &mut PassConfig, report: &mut Vec<String>) {
+        let f = BUDGET_FACTOR * BUDGET_FACTOR;
+        if self.auto_samples {
+            config.camera_samples = 1;
+        }
+        if self.auto_rays {
+            config.forward_rays = RAYS_RANGE.0.max(config.forward_rays / f);
+        }
+        report.push(format!(
+            "budgets: the cheapest, camera paths {} and forward rays {}: more of either did \
+             not lower the variance by {Z_SIGNIFICANT} standard errors",
+            config.camera_samples, config.forward_rays
+        ));
+    }
+
     /// Sets the automatic budgets for a pass whose variance is `scale` times the base pilot's
     /// and whose cost is `cost`.
     fn choose_budgets(
@@ -370,27 +391,7 @@ impl Tuner {
             (Some(gr), Some(gs)) => NoiseSplit::from_three(s, n, k, v, v - gr, v - gs),
             (Some(gr), None) => NoiseSplit::from_forward_rays(s, n, v, k, v - gr),
             (None, Some(gs)) => NoiseSplit::from_camera_samples(s, n, v, k, v - gs),
-            (None, None) => {
-                // Neither pilot bought a measurable gain: the variance is ruled by rare bright
-                // samples (fog-room-laser: the laser's light gathered on surfaces) that two
-                // passes cannot measure. Then the cheapest passes win, the most of them per
-                // second (fog-room-laser at 96 x 72: 10 000 forward rays and 1 camera path per
-                // pass, 2.7x the efficiency of 50 000 and 1; docs/study.md); keeping the base,
-                // as an earlier version did, kept paying for rays that bought nothing.
-                let f = BUDGET_FACTOR * BUDGET_FACTOR;
-                if self.auto_samples {
-                    config.camera_samples = 1;
-                }
-                if self.auto_rays {
-                    config.forward_rays = RAYS_RANGE.0.max(config.forward_rays / f);
-                }
-                report.push(format!(
-                    "budgets: the cheapest, camera paths {} and forward rays {}: more of either \
-                     did not lower the variance by {Z_SIGNIFICANT} standard errors",
-                    config.camera_samples, config.forward_rays
-                ));
-                return;
-            }
+            (None, None) => return self.cheapest(config, report),
         };
         let noise = split.scaled(scale);
         // The base pass's cost parts, rescaled to the chosen q's cost.
