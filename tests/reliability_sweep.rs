@@ -23,6 +23,7 @@ view_height = 1.0
 [integrator]
 radius = 0.05
 forward_rays = 300
+camera_samples = 1
 passes = 1
 
 [media.fog]

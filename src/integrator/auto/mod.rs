@@ -101,6 +101,11 @@ impl Measure {
     /// `self.variance - other.variance` if it exceeds `Z_SIGNIFICANT` standard errors,
     /// else 0.
     fn gain_over(&self, other: &Measure) -> f64 {
+        // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
+        // missed twice) measured nothing, not a variance of zero.
+        if other.variance == 0.0 && other.se == 0.0 {
+            return 0.0;
+        }
         let d = self.variance - other.variance;
         if d > Z_SIGNIFICANT * self.se.hypot(other.se) {
             d

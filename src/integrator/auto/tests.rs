@@ -73,3 +73,14 @@ fn camera_noise_alone_buys_camera_paths() {
         "rays not measured by a gain keep the base"
     );
 }
+
+#[test]
+fn a_pilot_that_saw_no_light_is_no_evidence() {
+    let mut t = budget_tuner();
+    // With more camera paths both pilot passes agree in every pixel (as when both miss a rare
+    // light): that is no measured gain, so the budgets fall to the cheapest pass, not to the
+    // most camera paths.
+    feed(&mut t, |c| if c.camera_samples > 1 { 0.0 } else { 1.0 });
+    let choice = t.choice().expect("chosen after the pilots");
+    assert_eq!(choice.config.camera_samples, 1, "{:?}", choice.report);
+}
