@@ -16,8 +16,9 @@
 //! seed alone, so that a render resumed from a checkpoint, a `--pass-range` part and a merge
 //! give the same bits whatever the thread count. The choice depends on the pilot passes only,
 //! which every process renders (or has in its film) before it needs the choice; a choice that
-//! moved with every pass would make pass 1000 depend on all passes before it. Costs are counted work (camera paths, volumes, forward rays, gather hits,
-//! weighed by [`COST_WEIGHTS`]), not measured time, for the same reason.
+//! moved with every pass would make pass 1000 depend on all passes before it. Costs are counted
+//! work (camera paths, volumes, forward rays, gather hits, weighed by [`COST_WEIGHTS`]), not
+//! measured time, for the same reason.
 
 pub mod model;
 
