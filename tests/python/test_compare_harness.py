@@ -25,6 +25,42 @@ def test_own_share_removes_reference_noise():
     assert abs(got - 0.1) < 0.005
 
 
+def test_reference_halves_measure_its_noise():
+    """A reference rendered as two halves: E[(A - B)^2] / 4 is the variance of their mean,
+    whatever the reference's noise per second (here 4x the image's, which the time formula
+    would get wrong)."""
+    import compare
+
+    rng = np.random.default_rng(5)
+    truth = np.full((64, 64, 3), 2.0)
+    img = truth + rng.normal(0.0, 0.2, truth.shape)
+    # Each half has variance 2 x 0.15^2, so the reference (their mean) has 0.15^2.
+    a = truth + rng.normal(0.0, 0.15 * np.sqrt(2.0), truth.shape)
+    b = truth + rng.normal(0.0, 0.15 * np.sqrt(2.0), truth.shape)
+    ref = 0.5 * (a + b)
+    every = np.ones(truth.shape[:2], dtype=bool)
+    none = ~every
+    var = [x / 4.0 for x in compare.errors(a, b, every, none, none)]
+    got = np.sqrt(compare.mse(img, ref) - var[0]) / truth.mean()
+    # True 0.1; measured 0.125 without the correction. The estimate's spread over 12288
+    # samples is about 1 %: 0.005 is a 5 sigma bound.
+    assert abs(got - 0.1) < 0.005
+    # The binned metric too: 4 x 4 bins average 16 independent pixels.
+    got_b = np.sqrt(compare.mse(compare.bin4(img), compare.bin4(ref)) - var[3]) / truth.mean()
+    assert abs(got_b - 0.025) < 0.005
+
+
+def test_spot_mask_finds_the_projected_point():
+    import beam_mask
+
+    cam = {"position": [0.0, 0.0, 0.0], "look_at": [0.0, 0.0, -1.0], "width": 64, "height": 48, "fov": 45.0}
+    # Straight ahead: the image centre (pixels 31-32, 23-24), and only a few pixels around it.
+    m = beam_mask.spot_mask(cam, [0.0, 0.0, -5.0], radius_px=2.0)
+    ys, xs = np.nonzero(m)
+    assert m[23:25, 31:33].all()
+    assert 4 <= m.sum() <= 16 and abs(xs.mean() - 31.5) < 0.5 and abs(ys.mean() - 23.5) < 0.5
+
+
 def test_fog_cube_translation():
     mi = pytest.importorskip("mitsuba")
     mi.set_variant("scalar_spectral")

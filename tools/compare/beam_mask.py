@@ -74,3 +74,12 @@ def beam_mask(cam: dict, start, direction, length: float, band_px: float = 3.0, 
     if len(idx[0]):
         ang[idx] = _ray_segment_angle(p[idx], m[idx], a, b)
     return mask | (down & (ang < reflect_rad))
+
+
+def spot_mask(cam: dict, point, radius_px: float = 4.0) -> np.ndarray:
+    """Pixels whose camera ray passes within `radius_px` pixel widths (as an angle) of `point`:
+    where a laser ends on a wall, its spot (a few pixels that can hold most of an image's
+    squared error)."""
+    o, d, pix = camera_rays(cam)
+    p = np.asarray(point, float)
+    return _ray_segment_angle(o, d, p, p) < radius_px * pix

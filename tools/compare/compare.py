@@ -48,10 +48,14 @@ Method:
 - Mitsuba's light spectra are brume's, in brume's units (mitsuba_scene.py), so the two images
   should agree with scale k = 1; k is fitted between the references (ratio of their sums away
   from the beam: least squares is pulled to 0 by fireflies) as a check.
-- Scenes without a laser (fog-cube): each renderer's error is against its own reference (the
-  reference's own noise removed: MSE_true = MSE_measured / (1 + t / t_ref), variance ~ 1 / time).
-  With --brume-set, brume's variance per time differs from its reference's: if a run with the
-  reference's settings stored the reference's variance (refs.json), that is subtracted instead.
+- Scenes without a laser (fog-cube): each renderer's error is against its own reference, with
+  the reference's own noise removed. brume's reference is rendered as two halves with different
+  seeds; E[(A - B)^2] / 4 is the per-pixel variance of their mean, subtracted from every MSE
+  (per metric: whole, away, beam, 4x4 bins), which holds whatever the reference's settings (a
+  smaller radius than the ladder's is noisier per second). References stored before the halves
+  existed fall back to MSE_true = MSE_measured / (1 + t / t_ref) (variance ~ 1 / time, same
+  settings) or, with --brume-set, to the variance a same-settings run stored in refs.json.
+  Mitsuba's reference noise is removed by the spp formula (same estimator as its ladder).
 - Scenes with a laser (fog-room-laser): Mitsuba's laser is a point spot with a 2 mm cone; next-event
   estimation reaches it only from path vertices inside that cone, so Mitsuba's reference does not
   converge on the beam nor on the light the beam scatters into the rest of the room (it is
@@ -97,6 +101,14 @@ def read_rgb(path: Path) -> np.ndarray:
         if "RGB" in ch:
             return np.asarray(ch["RGB"].pixels, dtype=np.float64)
         return np.stack([np.asarray(ch[c].pixels, dtype=np.float64) for c in "RGB"], axis=-1)
+
+
+def write_rgb(path: Path, rgb: np.ndarray) -> None:
+    """A float32 RGB EXR (written beside and renamed, so a crash leaves no half file)."""
+    tmp = path.with_name(path.name + ".tmp.exr")
+    with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION}, {"RGB": rgb.astype(np.float32)}) as f:
+        f.write(str(tmp))
+    tmp.replace(path)
 
 
 def clock_fn(clock: str):
@@ -230,13 +242,15 @@ def bin4(a: np.ndarray) -> np.ndarray:
     return a[:h, :w].reshape(h // 4, 4, w // 4, 4, -1).mean((1, 3))
 
 
-def errors(img: np.ndarray, ref: np.ndarray, away: np.ndarray, beam: np.ndarray) -> tuple:
-    """MSE over the whole image, away from the beam, in the beam, and of 4 x 4 bins."""
+def errors(img: np.ndarray, ref: np.ndarray, away: np.ndarray, beam: np.ndarray, spot: np.ndarray) -> tuple:
+    """MSE over the whole image, away from the beam, in the beam, of 4 x 4 bins, and over the
+    whole image but the lasers' wall spots."""
     return (
         mse(img, ref),
         mse(img, ref, away),
         mse(img, ref, beam) if beam.any() else 0.0,
         mse(bin4(img), bin4(ref)),
+        mse(img, ref, ~spot),
     )
 
 
@@ -291,11 +305,18 @@ def main() -> None:
             # refs.json written before these options existed: their only behaviour was the default.
             if meta["mitsuba"].get(key, old) != want:
                 ap.error(f"--reuse-refs: the stored Mitsuba reference was rendered with {key} {meta['mitsuba'].get(key, old)}, not {want}")
+    halves = (work / "brume-ref-a.exr", work / "brume-ref-b.exr")
     if "brume" in meta:
         b_ref, b_ref_t = read_rgb(work / "brume-ref.exr"), meta["brume"]["seconds"]
     else:
-        b_ref, b_ref_t = brume_render(a.brume, a.scene, a.ref_seconds, 1000, work / "brume-ref.exr", drop_sets + a.brume_ref_set, a.clock)
-        meta["brume"] = {"seconds": b_ref_t, "sets": drop_sets + a.brume_ref_set, "clock": a.clock}
+        # Two independent halves: their difference measures the reference's own noise, whatever
+        # its settings (a smaller radius than the ladder's is noisier per second).
+        sets = drop_sets + a.brume_ref_set
+        ra, ta = brume_render(a.brume, a.scene, a.ref_seconds / 2, 1000, halves[0], sets, a.clock)
+        rb, tb = brume_render(a.brume, a.scene, a.ref_seconds / 2, 1001, halves[1], sets, a.clock)
+        b_ref, b_ref_t = 0.5 * (ra + rb), ta + tb
+        write_rgb(work / "brume-ref.exr", b_ref)
+        meta["brume"] = {"seconds": b_ref_t, "sets": sets, "clock": a.clock, "halves": True}
     if "mitsuba" in meta:
         m_ref, m_ref_t, m_ref_spp = read_rgb(work / "mitsuba-ref.exr"), meta["mitsuba"]["seconds"], meta["mitsuba"]["spp"]
     else:
@@ -318,6 +339,19 @@ def main() -> None:
         length = mitsuba_scene.beam_length(l["position"], l["direction"], desc)
         beam |= beam_mask.beam_mask(desc["camera"], l["position"], l["direction"], length)
     away = ~beam
+    # Where each laser ends on a wall: its spot, inside the beam mask.
+    spot = np.zeros((h, w), dtype=bool)
+    for _, l in lasers:
+        length = mitsuba_scene.beam_length(l["position"], l["direction"], desc)
+        u = np.asarray(l["direction"], float)
+        end = np.asarray(l["position"], float) + u / np.linalg.norm(u) * length
+        spot |= beam_mask.spot_mask(desc["camera"], end)
+    # The reference's variance per pixel (whole, away, beam, 4x4 bins) from its two halves:
+    # E[(A - B)^2] = 4 Var[(A + B) / 2].
+    halves_var = None
+    if meta["brume"].get("halves") and all(h_.exists() for h_ in halves):
+        halves_var = tuple(x / 4.0 for x in errors(read_rgb(halves[0]), read_rgb(halves[1]), away, beam, spot))
+        meta["brume_var_ref_halves"] = list(halves_var)
     # Ratio of sums, not least squares: with heavy-tailed noise (fireflies in Mitsuba's image)
     # least squares is pulled towards 0 by the largest samples.
     k = float(b_ref[away].sum() / m_ref[away].sum())
@@ -345,9 +379,11 @@ def main() -> None:
             a.brume, a.scene, t, 1 + i + 100 * run, work / f"brume-{t:g}.exr", drop_sets + a.brume_set, a.clock
         )
         f = own_share(bt, b_ref_t)
-        e = errors(img, b_ref, away, beam)
+        e = errors(img, b_ref, away, beam, spot)
         b_var_ref.append(tuple(x * (1 - f) for x in e))
-        if stored_var is not None:
+        if halves_var is not None:
+            own = tuple(max(x - v, 0.0) for x, v in zip(e, halves_var))
+        elif stored_var is not None:
             # Other settings than the reference's: their variance per time differs, so remove the
             # reference's variance measured by the run with the reference's own settings.
             own = tuple(max(x - v, 0.0) for x, v in zip(e, stored_var))
@@ -365,7 +401,7 @@ def main() -> None:
         ff = own_share(spp, m_ref_spp)
         rungs.write(json.dumps({
             "run": run, "budget_s": t, "brume_s": bt, "brume_mse_own": own, "mitsuba_s": mt, "mitsuba_spp": spp,
-            "mitsuba_mse_own_ref": errors(img, m_ref, away, beam), "mitsuba_own_share": ff,
+            "mitsuba_mse_own_ref": errors(img, m_ref, away, beam, spot), "mitsuba_own_share": ff,
             "brume_ref_mean": float(b_ref.mean()), "mitsuba_ref_mean": float(m_ref.mean()),
             "mitsuba_integrator": a.integrator, "mitsuba_spot_profile": a.spot_profile,
         }) + "\n")
@@ -374,7 +410,7 @@ def main() -> None:
         rows.append({
             "renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": mt, "spp": spp,
             "mitsuba_integrator": a.integrator,
-            "_raw": errors(k * img, b_ref, away, beam),
+            "_raw": errors(k * img, b_ref, away, beam, spot),
             "own_away": np.sqrt(mse(img, m_ref, away) * ff) / m_ref[away].mean(),
         })
         print(f"run {run} t={t:g}: brume {bt:.1f} s, mitsuba {mt:.1f} s ({spp} spp) [{a.clock}]", flush=True)
@@ -385,6 +421,8 @@ def main() -> None:
         meta_path.write_text(json.dumps(meta, indent=2))
     elif stored_var is not None:
         var_ref = np.array(stored_var)
+    if halves_var is not None:
+        var_ref = np.array(halves_var)
     for i, r in enumerate(rows):
         if r["renderer"] == "mitsuba":
             if lasers:
@@ -392,11 +430,13 @@ def main() -> None:
             else:
                 # No laser: Mitsuba's own reference is trustworthy; measure it against that.
                 r["rel_rmse"] = r["rel_rmse_away"] = r["own_away"]
-                r["rel_rmse_beam"] = ""
-                e = errors(img_m[i], m_ref, away, beam)
+                r["rel_rmse_beam"] = r["rel_rmse_nospot"] = ""
+                e = errors(img_m[i], m_ref, away, beam, spot)
                 r["rel_rmse_bin4"] = np.sqrt(e[3] / (1.0 + r["spp"] / m_ref_spp)) / m_ref.mean()
                 continue
-        whole, aw, bm, b4 = r["_mse"]
+        whole, aw, bm, b4 = r["_mse"][:4]
+        # Stored variances from before the spot metric have 4 entries: no spot figure then.
+        r["rel_rmse_nospot"] = np.sqrt(r["_mse"][4]) / b_ref[~spot].mean() if lasers and len(r["_mse"]) > 4 else ""
         r["rel_rmse_bin4"] = np.sqrt(b4) / mean_ref
         r["rel_rmse"] = np.sqrt(whole) / mean_ref
         r["rel_rmse_away"] = np.sqrt(aw) / b_ref[away].mean()
@@ -462,7 +502,7 @@ def main() -> None:
     (a.out.parent / (a.out.name + "-agreement.json")).write_text(json.dumps(agreement, indent=2))
     print(json.dumps({x: y for x, y in agreement.items() if x != "region_means_linear_srgb_away_from_beam"}, indent=2), flush=True)
 
-    cols = ["renderer", "run", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "own_away"]
+    cols = ["renderer", "run", "budget_s", "measured_s", "spp", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "rel_rmse_nospot", "own_away"]
     csv_path = a.out.parent / (a.out.name + ".csv")
     with csv_path.open("w", newline="") as f:
         wr = csv.writer(f)
@@ -484,7 +524,7 @@ def summarise(rows, clock: str) -> dict:
     """Per renderer and budget: mean +- sd over runs of the charged seconds and of the errors;
     the brume / Mitsuba ratio of the means; the slope of log RMSE against log seconds (all runs)."""
     out = {"clock": clock, "budgets": {}, "slope": {}}
-    keys = ("measured_s", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam")
+    keys = ("measured_s", "rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "rel_rmse_nospot")
     for r in rows:
         b = out["budgets"].setdefault(f"{r['budget_s']:g}", {}).setdefault(r["renderer"], {k: [] for k in keys})
         for k in keys:
@@ -496,7 +536,7 @@ def summarise(rows, clock: str) -> dict:
         if "brume" in per and "mitsuba" in per:
             per["ratio_brume_over_mitsuba"] = {
                 k: per["brume"][k]["mean"] / per["mitsuba"][k]["mean"]
-                for k in ("rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam")
+                for k in ("rel_rmse", "rel_rmse_bin4", "rel_rmse_away", "rel_rmse_beam", "rel_rmse_nospot")
                 if k in per["brume"] and k in per["mitsuba"] and per["mitsuba"][k]["mean"] > 0
             }
     for who in ("brume", "mitsuba"):
