@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use brume::integrator::gather::Gather;
 use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord};
-use brume::integrator::{Estimator, IntegratorDesc};
+use brume::integrator::{Estimator, IntegratorDesc, Radii};
 use brume::medium::HomogeneousMedium;
 use brume::spectrum::Spectrum;
 use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, criterion_main};
@@ -82,7 +82,7 @@ fn build(n: usize, r: Records) -> Gather {
         Estimator::from_desc(&IntegratorDesc::default(), &[1.0], &media()).expect("spheres");
     Gather::new(
         &spheres,
-        radius(n),
+        Radii::one(radius(n)),
         Vec::new(),
         r.segments,
         r.volumes,
@@ -110,7 +110,7 @@ fn segments() -> Vec<(Vec3, Vec3)> {
 
 /// Hits of all segments, with the exact sphere test a light pass would do on each candidate.
 fn query_all(g: &Gather, segs: &[(Vec3, Vec3)]) -> (u64, u64) {
-    let r2 = g.radius * g.radius;
+    let r2 = g.radii.direct * g.radii.direct;
     let (mut candidates, mut hits) = (0u64, 0u64);
     for &(o, d) in segs {
         g.volumes_along(o, d, 1.0, |seg, rec| {

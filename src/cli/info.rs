@@ -13,11 +13,19 @@ pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     // The radius "auto" resolves to, and any radius in pixel footprints (the unit the
     // auto rule and the studies of docs/performance.md use).
     let footprint = brume::integrator::radius::pixel_footprint(&built.camera, &built.geometry);
-    let r0 = brume::scene::build_integrator(&scene, &built)?.radius.r0;
+    let integrator = brume::scene::build_integrator(&scene, &built)?;
+    let r0 = integrator.radius.r0;
     println!(
         "radius:       {r0:.5} m = {:.2} x the median pixel footprint ({footprint:.5} m)",
         r0 / footprint
     );
+    if integrator.indirect_scale != 1.0 {
+        let ri = integrator.radii(0).indirect;
+        println!(
+            "radius_indirect: {ri:.5} m = {:.2} x the median pixel footprint",
+            ri / footprint
+        );
+    }
     for w in &warnings {
         eprintln!("brume: warning: {w}");
     }

@@ -7,12 +7,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rand::Rng as _;
 use rayon::prelude::*;
 
-use super::Integrator;
 use super::camera_path::{CameraPath, NeeSums};
 use super::gather;
 use super::path;
 use super::record::CameraOutput;
 use super::rng::{self, Domain};
+use super::{Integrator, Radii};
 use crate::film::{Layer, PassBuffer};
 use crate::world::Scene;
 
@@ -25,8 +25,8 @@ pub const ROW_BATCH: u32 = 8;
 pub struct CameraJob {
     pub seed: u64,
     pub pass: u64,
-    /// The pass's gather radius (surface spheres near an edge are renormalised with it).
-    pub radius: f32,
+    /// The pass's gather radii (surface spheres near an edge are renormalised with them).
+    pub radii: Radii,
     pub first_row: u32,
     /// Peak gather memory after which the pass is split into a tile.
     pub budget_bytes: usize,
@@ -97,7 +97,7 @@ fn trace_row(
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);
             let mut cam = CameraPath::new(scene, integrator, pixel, &mut out, &mut nee);
-            cam.radius = job.radius;
+            cam.radii = job.radii;
             path::trace(
                 scene,
                 max_depth,

@@ -5,7 +5,6 @@
 use glam::Vec3;
 use rand::Rng as _;
 
-use super::Integrator;
 use super::by_light::ByLight;
 use super::direct::{Part, Segment};
 use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
@@ -16,6 +15,7 @@ use super::record::{
 };
 use super::rng::Rng;
 use super::settings::GatherMode;
+use super::{Integrator, Radii};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
 use crate::medium::{Mixture, WalkEnd, sample_extinction, sample_scatter};
@@ -76,8 +76,8 @@ pub struct CameraPath<'a> {
     gathering: bool,
     /// Whether the path still sees emitters directly (false once they are gathered by volumes).
     sees_emitters: bool,
-    /// The pass's gather radius.
-    pub radius: f32,
+    /// The pass's gather radii.
+    pub radii: Radii,
     /// Where and with what density the path last left a glossy (non-delta) surface by a BSDF
     /// sample, for the MIS weight of emitters it then hits; None after the camera, a delta
     /// bounce or a medium scattering. A sensor path starts with its sensor and the density of
@@ -104,7 +104,7 @@ impl<'a> CameraPath<'a> {
             w: Spectrum::splat(1.0, n),
             gathering: true,
             sees_emitters: true,
-            radius: 0.0,
+            radii: Radii::one(0.0),
             glossy_from: None,
         }
     }
@@ -140,7 +140,7 @@ impl<'a> CameraPath<'a> {
             medium: &self.scene.media[m as usize],
             medium_id: m,
             dir: ray.d,
-            radius: self.radius,
+            radius: self.radii.bound(),
             mix,
             len,
             first_extinction: self.first_extinction(),
@@ -334,6 +334,14 @@ impl CameraPath<'_> {
             -hit.ns
         };
         let throughput = self.out.throughputs.insert(self.w.as_slice(self.n));
+        let geometry = &self.scene.geometry;
+        let fraction = |r: f32| geometry.disc_fraction(hit.shape, hit.p, r);
+        let direct = fraction(self.radii.direct);
+        let indirect = if self.radii.indirect == self.radii.direct {
+            direct
+        } else {
+            fraction(self.radii.indirect)
+        };
         self.out.surfaces.push(SurfaceRecord {
             p: hit.p,
             pixel: self.pixel,
@@ -342,12 +350,8 @@ impl CameraPath<'_> {
             shape: hit.shape,
             uv: hit.uv,
             throughput,
-            scale: 1.0
-                / (pd
-                    * self
-                        .scene
-                        .geometry
-                        .disc_fraction(hit.shape, hit.p, self.radius)),
+            scale: 1.0 / (pd * direct),
+            scale_indirect: 1.0 / (pd * indirect),
         });
     }
 }

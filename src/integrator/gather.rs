@@ -13,6 +13,7 @@ use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 use obvhs::ray::Ray as BvhRay;
 
+use super::Radii;
 use super::estimator::Estimator;
 use super::record::{CameraOutput, SegmentRecord, SurfaceRecord, VolumeRecord};
 
@@ -25,7 +26,7 @@ pub const BUILD_BYTES_PER_PRIM: usize = 160;
 
 /// Records of one camera pass and the acceleration structures over them.
 pub struct Gather {
-    pub radius: f32,
+    pub radii: Radii,
     /// Surface spheres, in BVH leaf order.
     pub surfaces: Vec<SurfaceRecord>,
     pub segments: Vec<SegmentRecord>,
@@ -121,13 +122,15 @@ impl Gather {
     /// `throughputs` holds spectra of `bins` floats.
     pub fn new(
         estimator: &Estimator,
-        radius: f32,
+        radii: Radii,
         mut surfaces: Vec<SurfaceRecord>,
         mut segments: Vec<SegmentRecord>,
         mut volumes: Vec<VolumeRecord>,
         throughputs: Vec<f32>,
         bins: usize,
     ) -> Self {
+        // Bounds hold the larger radius; queries test the one their light needs.
+        let radius = radii.bound();
         let r = Vec3A::splat(radius);
         let (mut surface_bvh, mut volume_bvh) = rayon::join(
             || {
@@ -149,7 +152,7 @@ impl Gather {
         leaf_order(&mut volume_bvh, &mut volumes);
         segment_order(&mut segments, &mut volumes);
         Self {
-            radius,
+            radii,
             surfaces,
             segments,
             volumes,
@@ -161,12 +164,12 @@ impl Gather {
     }
 
     /// Builds the gather from a camera pass's records, leaving its direct radiance and counts.
-    pub fn from_output(estimator: &Estimator, radius: f32, out: &mut CameraOutput) -> Self {
+    pub fn from_output(estimator: &Estimator, radii: Radii, out: &mut CameraOutput) -> Self {
         let bins = out.throughputs.bins();
         let table = std::mem::take(&mut out.throughputs);
         Self::new(
             estimator,
-            radius,
+            radii,
             std::mem::take(&mut out.surfaces),
             std::mem::take(&mut out.segments),
             std::mem::take(&mut out.volumes),
@@ -182,11 +185,12 @@ impl Gather {
         &self.throughputs[a..a + self.bins]
     }
 
-    /// Calls `f` for every surface record whose sphere contains `p`.
+    /// Calls `f` for every surface record within `radius` of `p` (at most the larger of the
+    /// gather's radii, which its bounds hold).
     #[inline]
-    pub fn surfaces_at(&self, p: Vec3, mut f: impl FnMut(&SurfaceRecord)) {
+    pub fn surfaces_at(&self, p: Vec3, radius: f32, mut f: impl FnMut(&SurfaceRecord)) {
         let Some(bvh) = &self.surface_bvh else { return };
-        let r2 = self.radius * self.radius;
+        let r2 = radius * radius;
         // Any direction does; a diagonal one avoids zero components.
         let d = Vec3A::splat(0.577_350_26);
         let ray = BvhRay::new(Vec3A::from(p) - d * POINT_RAY, d, 0.0, 2.0 * POINT_RAY);

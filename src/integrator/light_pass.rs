@@ -95,6 +95,7 @@ pub fn light_pass(
                         light: 0,
                         class: CLASS_C,
                         deposits: true,
+                        first_flight: true,
                         hits: 0,
                         to_discs: false,
                     };
@@ -135,6 +136,10 @@ struct ForwardTracer<'a> {
     /// light whose direct light next-event estimation handles, until its first scattering or
     /// surface event (method note 9).
     deposits: bool,
+    /// Whether the ray is still on its first flight from the light (no scattering, no
+    /// non-null surface event): what it deposits is direct light, gathered at the direct radius
+    /// (`radius::Radii`).
+    first_flight: bool,
     /// Gather candidates met (surface spheres and volumes passed to their test).
     hits: u64,
     /// Whether the ray is on its first flight from a light whose direct light the sensors'
@@ -162,6 +167,7 @@ impl ForwardTracer<'_> {
             return;
         }
         self.class = CLASS_C;
+        self.first_flight = true;
         self.deposits = !self
             .integrator
             .direct
@@ -211,9 +217,11 @@ impl ForwardTracer<'_> {
         } else {
             -hit.ng
         };
-        let inv_area = 1.0 / (PI * gather.radius * gather.radius);
+        let direct = self.first_flight;
+        let radius = gather.radii.of(direct);
+        let inv_area = 1.0 / (PI * radius * radius);
         let mut hits = 0u64;
-        gather.surfaces_at(hit.p, |rec| {
+        gather.surfaces_at(hit.p, radius, |rec| {
             hits += 1;
             let rn = rec.n.decode();
             // Same side of the same surface as the camera path's hit (its own shape: the disc
@@ -233,7 +241,12 @@ impl ForwardTracer<'_> {
                 shape: rec.shape,
             };
             let f = scene.materials[mat as usize].eval_diffuse(rec.wo.decode(), wi, &at);
-            let factor = f * *flux * (inv_area * rec.scale);
+            let scale = if direct {
+                rec.scale
+            } else {
+                rec.scale_indirect
+            };
+            let factor = f * *flux * (inv_area * scale);
             let w = gather.throughput(rec.throughput);
             let (buf, norm) = (&mut *self.buf, self.norm);
             target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
@@ -292,7 +305,7 @@ impl ForwardTracer<'_> {
     ) {
         let scene = self.scene;
         let n = scene.grid.n;
-        let radius = gather.radius;
+        let radius = gather.radii.of(self.first_flight);
         let (norm, class) = (self.norm, self.class);
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
@@ -402,6 +415,7 @@ impl PathStep for ForwardTracer<'_> {
 
     fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
         self.deposits = true;
+        self.first_flight = false;
         self.to_discs = false;
         if !self.roulette(depth, rng) {
             return None;
@@ -440,6 +454,7 @@ impl PathStep for ForwardTracer<'_> {
             self.gather_surfaces(hit, ray.d);
         }
         self.deposits = true;
+        self.first_flight = false;
         self.to_discs = false;
         let u = Vec3::new(rng.random(), rng.random(), rng.random());
         let Some(s) = material.sample(wo, hit, u) else {

@@ -31,7 +31,7 @@ pub use direct::Direct;
 pub use estimator::Estimator;
 pub use memory::MemoryEstimate;
 pub use pass::{Budget, Renderer, Stats};
-pub use radius::{RadiusSchedule, radius_for_pass};
+pub use radius::{Radii, RadiusSchedule, radius_for_pass};
 pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
 
 use crate::medium::MediumError;
@@ -56,6 +56,8 @@ pub struct Integrator {
     /// Next-event estimation of direct light, when any light is handled by it.
     pub direct: Option<Direct>,
     pub radius: RadiusSchedule,
+    /// `radius_indirect` over the starting radius (1 when not set).
+    pub indirect_scale: f32,
     pub forward_rays: u64,
     pub camera_samples: u32,
     /// The multiple-spheres q of each medium.
@@ -78,6 +80,7 @@ impl Integrator {
                 r0,
                 alpha: desc.alpha,
             },
+            indirect_scale: desc.radius_indirect.map_or(1.0, |ri| ri / r0),
             forward_rays: desc.forward_rays.value().unwrap_or(defaults::FORWARD_RAYS),
             camera_samples: desc
                 .camera_samples
@@ -89,6 +92,20 @@ impl Integrator {
 }
 
 impl Integrator {
+    /// The radii of film pass `p`: the schedule's radius, and the indirect one in the ratio the
+    /// settings give.
+    pub fn radii(&self, p: u64) -> Radii {
+        let r = self.radius.at(p);
+        Radii {
+            direct: r,
+            indirect: if self.indirect_scale == 1.0 {
+                r
+            } else {
+                r * self.indirect_scale
+            },
+        }
+    }
+
     /// How the passes sample now (q per medium, forward rays, camera paths per pixel).
     pub fn pass_config(&self) -> auto::PassConfig {
         auto::PassConfig {

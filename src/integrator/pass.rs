@@ -4,12 +4,12 @@
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;
 
-use super::Integrator;
 use super::auto::{Choice, Tuner, Work, pixel_totals};
 use super::camera_pass::{CameraJob, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
 use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
+use super::{Integrator, Radii};
 use crate::film::{Film, PassBuffer, SpectralImage};
 use crate::world::Scene;
 
@@ -49,7 +49,7 @@ pub struct Renderer<'a> {
     integrator: Integrator,
     seed: u64,
     film: Film,
-    radius: f32,
+    radii: Radii,
     /// Chooses the `"auto"` settings from pilot passes (None when there are none).
     tuner: Option<Tuner>,
     /// The scene's illuminance sensors.
@@ -70,7 +70,7 @@ impl<'a> Renderer<'a> {
                 0,
                 scene.film_extras.clone(),
             ),
-            radius: integrator.radius.at(0),
+            radii: integrator.radii(0),
             tuner: Tuner::new(
                 &integrator.settings,
                 scene.media.len(),
@@ -87,7 +87,7 @@ impl<'a> Renderer<'a> {
     pub fn starting_at(scene: &'a Scene, integrator: Integrator, seed: u64, first: u64) -> Self {
         let mut r = Self::new(scene, integrator, seed);
         r.film.first = first;
-        r.radius = r.integrator.radius.at(first);
+        r.radii = r.integrator.radii(first);
         r
     }
 
@@ -110,7 +110,7 @@ impl<'a> Renderer<'a> {
         if film.extras != r.film.extras {
             return Err("the film keeps other sensors or light layers than the scene".into());
         }
-        r.radius = r.integrator.radius.at(film.end());
+        r.radii = r.integrator.radii(film.end());
         r.film = film;
         Ok(r)
     }
@@ -138,9 +138,14 @@ impl<'a> Renderer<'a> {
         &self.integrator
     }
 
-    /// The radius the next pass will use.
+    /// The radius the next pass will use (its direct light's, see [`Radii`]).
     pub fn radius(&self) -> f32 {
-        self.radius
+        self.radii.direct
+    }
+
+    /// The radii the next pass will use.
+    pub fn radii(&self) -> Radii {
+        self.radii
     }
 
     /// Renders pass number `self.film.end()` and adds it to the film. When the gather records
@@ -226,7 +231,7 @@ impl<'a> Renderer<'a> {
         stop: &AtomicBool,
     ) -> Option<(PassBuffer, Work)> {
         let (scene, integrator) = (self.scene, &self.integrator);
-        self.radius = integrator.radius.at(film_pass);
+        self.radii = integrator.radii(film_pass);
         let h = scene.camera.resolution().1;
         let mut buf = self.film.pass_buffer();
         let spp = integrator.camera_samples as f32;
@@ -242,7 +247,7 @@ impl<'a> Renderer<'a> {
             let job = CameraJob {
                 seed: self.seed,
                 pass,
-                radius: self.radius,
+                radii: self.radii,
                 first_row: row,
                 budget_bytes: budget,
                 light_layers: buf.lights > 0,
@@ -256,7 +261,7 @@ impl<'a> Renderer<'a> {
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
             work.volumes += out.volumes.len() as u64;
-            let gather = Gather::from_output(&integrator.estimator, self.radius, &mut out);
+            let gather = Gather::from_output(&integrator.estimator, self.radii, &mut out);
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
             let light = LightJob {
@@ -301,7 +306,7 @@ impl<'a> Renderer<'a> {
         let job = SensorJob {
             seed: self.seed,
             pass,
-            radius: self.radius,
+            radii: self.radii,
             points: &self.sensors,
         };
         let s = SensorPass::new(self.scene, &self.integrator, &job, stop)?;

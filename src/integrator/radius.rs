@@ -40,6 +40,39 @@ impl RadiusSchedule {
     }
 }
 
+/// The two radii of a pass. The gathered part holds two kinds of light: the direct light of
+/// lights next-event estimation does not handle (a laser's beam and spot: sharp, dense where it
+/// is, and blurred by every millimetre of radius) and light that has scattered at least once
+/// (smooth, and sparse: it wants a large radius). A forward ray deposits with `direct` on its
+/// first flight from such a light and with `indirect` after its first scattering or non-null
+/// surface event (`integrator.radius_indirect`; the same as `direct` unless set).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Radii {
+    pub direct: f32,
+    pub indirect: f32,
+}
+
+impl Radii {
+    /// One radius for both kinds of light.
+    pub fn one(r: f32) -> Self {
+        Radii {
+            direct: r,
+            indirect: r,
+        }
+    }
+
+    /// The larger radius: what the gather structure's bounds must hold.
+    pub fn bound(&self) -> f32 {
+        self.direct.max(self.indirect)
+    }
+
+    /// The radius of a deposit of direct (`true`) or scattered light.
+    #[inline]
+    pub fn of(&self, direct: bool) -> f32 {
+        if direct { self.direct } else { self.indirect }
+    }
+}
+
 /// Radius for pass `p` of a schedule starting at `r0` (see [`RadiusSchedule::at`]).
 pub fn radius_for_pass(r0: f32, alpha: f32, p: u64) -> f32 {
     RadiusSchedule { r0, alpha }.at(p)

@@ -28,7 +28,10 @@ pub struct SurfaceRecord {
     pub shape: u32,
     pub uv: Vec2,
     pub throughput: u32,
+    /// 1 / (diffuse pick probability x the fraction of the sphere's disc on its surface at the
+    /// direct radius); `scale_indirect` the same at the indirect radius (`radius::Radii`).
     pub scale: f32,
+    pub scale_indirect: f32,
 }
 
 /// One camera segment in a medium that left at least one integration volume: what all its

@@ -24,13 +24,13 @@ use glam::{Vec2, Vec3};
 use rand::Rng as _;
 use rayon::prelude::*;
 
-use super::Integrator;
 use super::by_light::ByLight;
 use super::camera_path::{CameraPath, NeeSums};
 use super::gather::Gather;
 use super::path;
 use super::record::{CameraOutput, DirectRecord};
 use super::rng::{self, Domain};
+use super::{Integrator, Radii};
 use crate::film::{PassBuffer, SensorKind};
 use crate::geometry::sampling::{Frame, cosine_hemisphere};
 use crate::geometry::spawn;
@@ -80,7 +80,7 @@ pub fn sensor_points(scene: &Scene) -> Vec<SensorPoint> {
 pub struct SensorJob<'a> {
     pub seed: u64,
     pub pass: u64,
-    pub radius: f32,
+    pub radii: Radii,
     pub points: &'a [SensorPoint],
 }
 
@@ -149,7 +149,7 @@ fn trace_batch(
         let d = s.frame.to_world(local);
         let ray = spawn(s.position, s.frame.n, d);
         let mut cam = CameraPath::new(scene, integrator, s.index, &mut out, &mut nee);
-        cam.radius = job.radius;
+        cam.radii = job.radii;
         cam.glossy_from = Some((s.position, pdf));
         let max_depth = integrator.settings.max_depth;
         path::trace(scene, max_depth, ray, s.medium, &mut cam, &mut rng);
@@ -175,13 +175,15 @@ impl SensorPass {
         stop: &AtomicBool,
     ) -> Option<Self> {
         let mut out = sensor_pass(scene, integrator, job, stop)?;
-        let gather = Gather::from_output(&integrator.estimator, job.radius, &mut out);
+        let gather = Gather::from_output(&integrator.estimator, job.radii, &mut out);
         let paths = integrator.settings.sensor_paths as f32;
         let (spp, rays) = (
             integrator.camera_samples as f32,
             integrator.forward_rays as f32,
         );
-        let disc_scale = 1.0 / (rays * PI * job.radius * job.radius);
+        // The discs take a light's first flight: its direct light.
+        let r = job.radii.direct;
+        let disc_scale = 1.0 / (rays * PI * r * r);
         Some(Self {
             out,
             gather: SensorGather {
@@ -243,7 +245,7 @@ impl SensorGather {
     /// `[0, len]`, crosses from the front. A segment ending on the disc's plane (a sensor lying
     /// on a surface the ray hits) counts: its end is allowed a spawn offset's slack.
     pub fn crossings(&self, o: Vec3, d: Vec3, len: f32, mut hit: impl FnMut(u32, f32)) {
-        let r2 = self.gather.radius * self.gather.radius;
+        let r2 = self.gather.radii.direct * self.gather.radii.direct;
         for s in &self.points {
             let n = s.frame.n;
             let cos = d.dot(n);

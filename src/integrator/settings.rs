@@ -66,6 +66,10 @@ pub struct IntegratorDesc {
     /// Integration sphere / cylinder radius in metres, or `"auto"`: from the pixel footprint at
     /// the camera's first surface hits (`radius::auto_radius`).
     pub radius: Setting<f32>,
+    /// Radius in metres for light that has scattered at least once (`radius::Radii`); absent:
+    /// `radius`. Follows `radius`'s progressive schedule (the ratio stays fixed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius_indirect: Option<f32>,
     /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
     /// after pass p. 1 keeps the radius fixed (the paper's setting).
     pub alpha: f32,
@@ -102,6 +106,7 @@ impl Default for IntegratorDesc {
     fn default() -> Self {
         Self {
             radius: Setting::Auto,
+            radius_indirect: None,
             alpha: 1.0,
             forward_rays: Setting::Auto,
             camera_samples: Setting::Auto,
@@ -130,6 +135,14 @@ impl IntegratorDesc {
             fail(
                 "integrator.radius",
                 format!("must be a finite number > 0 or \"auto\", got {r}"),
+            );
+        }
+        if let Some(r) = self.radius_indirect
+            && !(r.is_finite() && r > 0.0)
+        {
+            fail(
+                "integrator.radius_indirect",
+                format!("must be a finite number > 0, got {r}"),
             );
         }
         if !(self.alpha > 0.0 && self.alpha <= 1.0) {

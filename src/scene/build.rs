@@ -66,6 +66,12 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
         Some(r) => r,
         None => auto_radius(&camera, &geometry),
     };
+    // Volumes reach as far as the larger of the two radii (`integrator::Radii`).
+    if let Some(ri) = d.integrator.radius_indirect
+        && ri.is_finite()
+    {
+        b.radius = b.radius.max(ri);
+    }
     let lights = build_lights(&b, d, &geometry, area_lights)?;
     let (world_min, world_max) = world_box(&geometry, &camera, b.radius);
     let warnings = warnings(scene, &geometry, &lights, b.radius);

@@ -28,7 +28,7 @@ fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) 
     let job = CameraJob {
         seed: 1,
         pass: 0,
-        radius: integrator.radius.r0,
+        radii: integrator.radii(0),
         first_row: 0,
         budget_bytes: usize::MAX,
         light_layers: false,
@@ -37,13 +37,12 @@ fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) 
     assert_eq!(rows, s.camera.resolution().1);
     let (surfaces, volumes) = (out.surfaces.len(), out.volumes.len());
     let predicted = bytes_for(&out);
-    let radius = integrator.radius.r0;
-    let g = Gather::from_output(&integrator.estimator, radius, &mut out);
+    let g = Gather::from_output(&integrator.estimator, integrator.radii(0), &mut out);
     let bytes = g.bytes();
     // Without the surface spheres: the volume part's own bytes.
     let volume_part = Gather::new(
         &integrator.estimator,
-        g.radius,
+        g.radii,
         Vec::new(),
         g.segments.clone(),
         g.volumes.clone(),
