@@ -140,4 +140,88 @@ impl Camera {
             }
         }
     }
+
+    /// Where the camera sees point `p`, for light tracing (splatting a point's radiance towards
+    /// the camera into a pixel): None when `p` is behind the camera or outside the image.
+    ///
+    /// A pixel is the mean radiance over its rectangle on the image plane (box filter, as
+    /// `generate_ray`'s uniform pixel samples make it). For a perspective camera with the plane
+    /// at distance 1 from the pinhole, a plane element `du` at angle `theta_c` from the axis
+    /// subtends `dw = cos^3(theta_c) du`, and a surface element `dA` at distance `d` whose normal
+    /// makes `theta_x` with the direction to the pinhole subtends `dw = cos(theta_x) dA / d^2`;
+    /// so a pixel of plane area `A` measures `(1/A) * integral L cos(theta_x) / (d^2 cos^3
+    /// theta_c) dA` over the surface it sees, and `importance` is everything but `L
+    /// cos(theta_x) dA`. An orthographic pixel of `A` square metres measures `(1/A) * integral
+    /// L cos(theta_x) dA`.
+    pub fn project(&self, p: Vec3) -> Option<Projection> {
+        let (w, h) = self.resolution();
+        let (wf, hf) = (w as f32, h as f32);
+        let (sx, sy, to_camera, dist, importance) = match *self {
+            Camera::Orthographic {
+                position,
+                forward,
+                right,
+                up,
+                view_width,
+                view_height,
+                ..
+            } => {
+                let d = p - position;
+                let z = d.dot(forward);
+                if z.is_nan() || z <= 0.0 {
+                    return None;
+                }
+                let area = (view_width / wf) * (view_height / hf);
+                let sx = d.dot(right) / (0.5 * view_width);
+                let sy = d.dot(up) / (0.5 * view_height);
+                (sx, sy, -forward, z, 1.0 / area)
+            }
+            Camera::Perspective {
+                position,
+                forward,
+                right,
+                up,
+                tan_half_v,
+                ..
+            } => {
+                let d = p - position;
+                let z = d.dot(forward);
+                if z.is_nan() || z <= 0.0 {
+                    return None;
+                }
+                let dist = d.length();
+                let aspect = wf / hf;
+                let sx = d.dot(right) / (z * tan_half_v * aspect);
+                let sy = d.dot(up) / (z * tan_half_v);
+                let area = (2.0 * tan_half_v * aspect / wf) * (2.0 * tan_half_v / hf);
+                let cos = z / dist;
+                let importance = 1.0 / (area * cos * cos * cos * dist * dist);
+                (sx, sy, -d / dist, dist, importance)
+            }
+        };
+        let x = 0.5 * (sx + 1.0) * wf;
+        let y = 0.5 * (1.0 - sy) * hf;
+        let inside = (0.0..wf).contains(&x) && (0.0..hf).contains(&y);
+        (inside && importance.is_finite()).then(|| Projection {
+            pixel: (y as u32).min(h - 1) * w + (x as u32).min(w - 1),
+            to_camera,
+            dist,
+            importance,
+        })
+    }
+}
+
+/// Where the camera sees a point ([`Camera::project`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projection {
+    /// Row-major pixel index (`y * width + x`).
+    pub pixel: u32,
+    /// Unit direction from the point towards the camera (its pinhole, or against the view
+    /// direction of an orthographic camera).
+    pub to_camera: Vec3,
+    /// Distance to the pinhole, or to the orthographic camera's plane along the view direction.
+    pub dist: f32,
+    /// The pixel's importance: radiance leaving the point times `cos(theta_x) dA` times this
+    /// is the pixel value it adds (see [`Camera::project`]).
+    pub importance: f32,
 }

@@ -11,7 +11,8 @@ use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
 use super::oct::Oct;
 use super::path::{MediumStep, PathStep, SurfaceStep};
 use super::record::{
-    CLASS_ALL, CLASS_C, CameraOutput, DirectRecord, SegmentRecord, SurfaceRecord, VolumeRecord,
+    CLASS_ALL, CLASS_C, CameraOutput, DirectRecord, PRIMARY, SegmentRecord, SurfaceRecord,
+    VolumeRecord,
 };
 use super::rng::Rng;
 use super::settings::GatherMode;
@@ -78,6 +79,9 @@ pub struct CameraPath<'a> {
     sees_emitters: bool,
     /// The pass's gather radii.
     pub radii: Radii,
+    /// Whether the path has had no scattering and no non-null surface event yet (a camera
+    /// path's first volumes and surface spheres; false from the start for sensor paths).
+    pub primary: bool,
     /// Where and with what density the path last left a glossy (non-delta) surface by a BSDF
     /// sample, for the MIS weight of emitters it then hits; None after the camera, a delta
     /// bounce or a medium scattering. A sensor path starts with its sensor and the density of
@@ -105,6 +109,7 @@ impl<'a> CameraPath<'a> {
             gathering: true,
             sees_emitters: true,
             radii: Radii::one(0.0),
+            primary: true,
             glossy_from: None,
         }
     }
@@ -135,7 +140,7 @@ impl<'a> CameraPath<'a> {
             CLASS_ALL
         } else {
             CLASS_C
-        };
+        } | if self.primary { PRIMARY } else { 0 };
         let cam = CameraSegment {
             medium: &self.scene.media[m as usize],
             medium_id: m,
@@ -224,6 +229,7 @@ impl PathStep for CameraPath<'_> {
         // already gathered (method note 6).
         self.sees_emitters = false;
         self.glossy_from = None;
+        self.primary = false;
         let p = ray.o + ray.d * t;
         let med = &self.scene.media[m as usize];
         let ch = self.integrator.settings.channels();
@@ -304,6 +310,7 @@ impl PathStep for CameraPath<'_> {
         if self.w.is_zero() {
             return SurfaceStep::Stop;
         }
+        self.primary = false;
         SurfaceStep::Scattered(s.wi)
     }
 
@@ -352,6 +359,7 @@ impl CameraPath<'_> {
             throughput,
             scale: 1.0 / (pd * direct),
             scale_indirect: 1.0 / (pd * indirect),
+            primary: self.primary,
         });
     }
 }

@@ -9,13 +9,15 @@ use glam::Vec3;
 use rand::Rng as _;
 
 use super::Integrator;
+use super::camera_splat;
 use super::chunk_order::{Shared, WakeOnPanic};
 use super::estimator::{Estimator, ForwardSegment, VolumeEstimator};
 use super::gather::Gather;
 use super::path::{self, MediumStep, PathStep, SurfaceStep};
-use super::record::{CLASS_C, CLASS_D};
+use super::record::{CLASS_C, CLASS_D, PRIMARY};
 use super::rng::{self, Domain, Rng};
 use super::sensors::SensorGather;
+use super::target::Target;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
@@ -96,6 +98,11 @@ pub fn light_pass(
                         class: CLASS_C,
                         deposits: true,
                         first_flight: true,
+                        specular_chain: true,
+                        // The gather tiles of a pass trace their own forward rays; one set
+                        // splats.
+                        splat_norm: (integrator.settings.splat_to_camera && job.tile == 0)
+                            .then(|| 1.0 / total as f32),
                         hits: 0,
                         to_discs: false,
                     };
@@ -140,6 +147,13 @@ struct ForwardTracer<'a> {
     /// non-null surface event): what it deposits is direct light, gathered at the direct radius
     /// (`radius::Radii`).
     first_flight: bool,
+    /// Whether the ray has met only index-matched boundaries and specular reflections or
+    /// refractions since its emission: what it deposits now is direct or caustic light, which
+    /// the splat to the camera takes where the camera sees it directly (`camera_splat`).
+    specular_chain: bool,
+    /// `1 / forward rays` when first surface hits are splatted to the camera by this pass's
+    /// forward rays (`camera_splat`; the first gather tile's).
+    splat_norm: Option<f32>,
     /// Gather candidates met (surface spheres and volumes passed to their test).
     hits: u64,
     /// Whether the ray is on its first flight from a light whose direct light the sensors'
@@ -168,6 +182,7 @@ impl ForwardTracer<'_> {
         }
         self.class = CLASS_C;
         self.first_flight = true;
+        self.specular_chain = true;
         self.deposits = !self
             .integrator
             .direct
@@ -218,6 +233,11 @@ impl ForwardTracer<'_> {
             -hit.ng
         };
         let direct = self.first_flight;
+        // With the splat to the camera on, a camera path's first surface spheres leave direct
+        // and caustic light to it (in every tile; `camera_splat`).
+        let skip_primary = self.specular_chain
+            && matches!(target, Target::Image { .. })
+            && self.integrator.settings.splat_to_camera;
         let radius = gather.radii.of(direct);
         let inv_area = 1.0 / (PI * radius * radius);
         let mut hits = 0u64;
@@ -227,6 +247,9 @@ impl ForwardTracer<'_> {
             // Same side of the same surface as the camera path's hit (its own shape: the disc
             // fraction that renormalises the record counts only that shape).
             if rec.shape != hit.shape || rn.dot(wi) <= 0.0 || rn.dot(ng) < 0.5 {
+                return;
+            }
+            if skip_primary && rec.primary {
                 return;
             }
             let Some(mat) = scene.geometry.shape(rec.shape).material else {
@@ -307,6 +330,16 @@ impl ForwardTracer<'_> {
         let n = scene.grid.n;
         let radius = gather.radii.of(self.first_flight);
         let (norm, class) = (self.norm, self.class);
+        // A camera path's first volumes leave direct and caustic light to the splat
+        // (`camera_splat`).
+        let skip_primary = if self.specular_chain
+            && matches!(target, Target::Image { .. })
+            && self.integrator.settings.splat_to_camera
+        {
+            PRIMARY
+        } else {
+            0
+        };
         let buf = &mut *self.buf;
         let seg_medium = m.map_or(u16::MAX, |m| m as u16);
         // A grey flight's flux does not change along the segment: skip its survival weights.
@@ -320,7 +353,7 @@ impl ForwardTracer<'_> {
         let mut hits = 0u64;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
             hits += 1;
-            if seg.classes & class == 0 {
+            if seg.classes & class == 0 || seg.classes & skip_primary != 0 {
                 return;
             }
             let same = seg.medium == seg_medium;
@@ -351,43 +384,6 @@ impl ForwardTracer<'_> {
     }
 }
 
-/// Where a gather structure's splats go.
-#[derive(Clone, Copy)]
-enum Target {
-    /// The image, and the layer of the light the forward ray came from.
-    Image { light: u32 },
-    /// The sensors' slots (the sensor paths' records name a sensor as their pixel), with the
-    /// pixel scale times `scale`.
-    Sensors { scale: f32 },
-}
-
-impl Target {
-    /// Adds the sample `w * f * norm` to a pixel of record `pixel` (see `Target`).
-    #[inline]
-    fn splat(
-        self,
-        buf: &mut ChunkSplats,
-        layer: Layer,
-        pixel: u32,
-        w: &[f32],
-        f: &[f32],
-        norm: f32,
-    ) {
-        match self {
-            Target::Image { light } => {
-                buf.splat_from(layer, pixel as usize, Some(light), w, f, norm);
-            }
-            Target::Sensors { scale } => {
-                let mut v = Spectrum::ZERO;
-                for ((v, w), f) in v.0.iter_mut().zip(w).zip(f) {
-                    *v = w * f;
-                }
-                buf.splat_sensor(pixel as usize, &v.0[..f.len()], norm * scale);
-            }
-        }
-    }
-}
-
 impl PathStep for ForwardTracer<'_> {
     fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
         let med = &self.scene.media[m as usize];
@@ -402,6 +398,10 @@ impl PathStep for ForwardTracer<'_> {
         };
         if self.deposits {
             self.gather_volumes(Some(m), ray, reach, Some(&flight));
+            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain) {
+                let (fl, u) = ((&flight, &self.flux), (norm, rng.random()));
+                camera_splat::splat_medium(self.scene, (m, ray), fl, self.light, self.buf, u);
+            }
         }
         if self.to_discs {
             self.cross_discs(ray, flight.end(), Some(&flight));
@@ -416,6 +416,7 @@ impl PathStep for ForwardTracer<'_> {
     fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray> {
         self.deposits = true;
         self.first_flight = false;
+        self.specular_chain = false;
         self.to_discs = false;
         if !self.roulette(depth, rng) {
             return None;
@@ -451,6 +452,10 @@ impl PathStep for ForwardTracer<'_> {
         let material = &scene.materials[mat_id as usize];
         let wo = -ray.d;
         if self.deposits && material.diffuse_probability(wo, hit) > 0.0 {
+            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain) {
+                let at = (hit, ray.d, mat_id);
+                camera_splat::splat(scene, at, &self.flux, self.light, self.buf, norm);
+            }
             self.gather_surfaces(hit, ray.d);
         }
         self.deposits = true;
@@ -460,8 +465,13 @@ impl PathStep for ForwardTracer<'_> {
         let Some(s) = material.sample(wo, hit, u) else {
             return SurfaceStep::Stop;
         };
-        if s.kind == LobeKind::Diffuse {
-            self.class = CLASS_D;
+        match s.kind {
+            LobeKind::Diffuse => {
+                self.class = CLASS_D;
+                self.specular_chain = false;
+            }
+            LobeKind::Glossy => self.specular_chain = false,
+            LobeKind::Specular => {}
         }
         self.flux *= s.weight;
         SurfaceStep::Scattered(s.wi)

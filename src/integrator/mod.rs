@@ -9,6 +9,7 @@ pub mod auto;
 mod by_light;
 mod camera_pass;
 mod camera_path;
+mod camera_splat;
 mod chunk_order;
 pub mod direct;
 pub mod estimator;
@@ -25,6 +26,7 @@ mod rng;
 mod sensors;
 pub mod setting;
 pub mod settings;
+mod target;
 mod throughput;
 
 pub use direct::Direct;

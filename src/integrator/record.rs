@@ -13,6 +13,10 @@ use crate::spectrum::Spectrum;
 pub const CLASS_C: u8 = 1;
 pub const CLASS_D: u8 = 2;
 pub const CLASS_ALL: u8 = CLASS_C | CLASS_D;
+/// Flag (not a class of light) of a camera path's segment before any scattering or non-null
+/// surface event: its volumes leave forward rays' direct and caustic light to the splat to the camera
+/// when `integrator.splat_to_camera` is on (`camera_splat`).
+pub const PRIMARY: u8 = 4;
 
 /// An integration sphere on a diffuse surface (the surface engine's estimator). Its weight is
 /// `throughput * scale` (scale = 1 / the diffuse-part probability). The material is the
@@ -32,6 +36,10 @@ pub struct SurfaceRecord {
     /// direct radius); `scale_indirect` the same at the indirect radius (`radius::Radii`).
     pub scale: f32,
     pub scale_indirect: f32,
+    /// Whether this is the camera path's first non-null surface event (no scattering before
+    /// it): such a sphere leaves forward rays' direct and caustic light to the splat to the camera when
+    /// `integrator.splat_to_camera` is on (`camera_splat`).
+    pub primary: bool,
 }
 
 /// One camera segment in a medium that left at least one integration volume: what all its
@@ -45,7 +53,7 @@ pub struct SegmentRecord {
     /// Camera throughput at the segment's start (index into the pass's throughput table).
     pub throughput: u32,
     pub medium: u16,
-    /// Bit mask of CLASS_C / CLASS_D.
+    /// Bit mask of CLASS_C / CLASS_D, and PRIMARY.
     pub classes: u8,
 }
 
@@ -144,6 +152,6 @@ mod tests {
     fn record_sizes() {
         assert_eq!(std::mem::size_of::<SegmentRecord>(), 36);
         assert_eq!(std::mem::size_of::<VolumeRecord>(), 12);
-        assert_eq!(std::mem::size_of::<SurfaceRecord>(), 44);
+        assert_eq!(std::mem::size_of::<SurfaceRecord>(), 52);
     }
 }

@@ -150,6 +150,7 @@ fn trace_batch(
         let ray = spawn(s.position, s.frame.n, d);
         let mut cam = CameraPath::new(scene, integrator, s.index, &mut out, &mut nee);
         cam.radii = job.radii;
+        cam.primary = false;
         cam.glossy_from = Some((s.position, pdf));
         let max_depth = integrator.settings.max_depth;
         path::trace(scene, max_depth, ray, s.medium, &mut cam, &mut rng);

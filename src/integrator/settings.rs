@@ -70,6 +70,11 @@ pub struct IntegratorDesc {
     /// `radius`. Follows `radius`'s progressive schedule (the ratio stays fixed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub radius_indirect: Option<f32>,
+    /// Light tracing to the camera for the direct light of lights that are not next-event
+    /// estimated, where the camera sees it on a surface (`camera_splat`): sharp and low-noise
+    /// small spots (a laser's). Off: the paper's surface spheres gather it.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub splat_to_camera: bool,
     /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
     /// after pass p. 1 keeps the radius fixed (the paper's setting).
     pub alpha: f32,
@@ -107,6 +112,7 @@ impl Default for IntegratorDesc {
         Self {
             radius: Setting::Auto,
             radius_indirect: None,
+            splat_to_camera: false,
             alpha: 1.0,
             forward_rays: Setting::Auto,
             camera_samples: Setting::Auto,

@@ -16,7 +16,7 @@ mod medium;
 pub use medium::Segment;
 pub mod sampling;
 mod sensor;
-mod shadow;
+pub(super) mod shadow;
 mod surface;
 
 pub use surface::Part;
