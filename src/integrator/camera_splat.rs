@@ -81,30 +81,6 @@ pub fn connect(
     Some((pr.pixel, f * *flux * t * (cos_c.abs() * pr.importance)))
 }
 
-/// Splats [`connect`]'s value, times `norm` (1 / forward rays), into its pixel's surface layer
-/// and the layer of `light`.
-pub fn splat(
-    scene: &Scene,
-    (hit, dir, mat): (&Hit, Vec3, u32),
-    flux: &Spectrum,
-    light: u32,
-    buf: &mut ChunkSplats,
-    norm: f32,
-) {
-    if let Some((pixel, v)) = connect(scene, hit, dir, mat, flux) {
-        let n = scene.grid.n;
-        let one = Spectrum::splat(1.0, n);
-        buf.splat_from(
-            Layer::Surface,
-            pixel as usize,
-            Some(light),
-            &v.0[..n],
-            &one.0[..n],
-            norm,
-        );
-    }
-}
-
 /// The pixel and value (per forward ray) of the flight `flight` of a ray carrying
 /// `flux` from `ray.o` along `ray.d` in medium `m`, scattered once towards the camera at the
 /// point `u * flight.end()`; None when the camera does not see that point.
@@ -133,26 +109,23 @@ pub fn connect_medium(
     Some((pr.pixel, times_phase(j * t, med, ray.d.dot(pr.to_camera))))
 }
 
-/// Splats [`connect_medium`]'s value, times `norm`, into its pixel's medium layer and the
-/// layer of `light`.
-pub fn splat_medium(
-    scene: &Scene,
-    at: (u32, &Ray),
-    (flight, flux): (&ForwardFlight, &Spectrum),
-    light: u32,
+/// Adds a connection's value `(pixel, v)` times `norm` (1 / forward rays) to `layer` of its
+/// pixel and to the layer of `light`.
+pub fn put(
     buf: &mut ChunkSplats,
-    (norm, u): (f32, f32),
+    layer: Layer,
+    (pixel, v): (u32, Spectrum),
+    light: u32,
+    n: usize,
+    norm: f32,
 ) {
-    if let Some((pixel, v)) = connect_medium(scene, at, flight, flux, u) {
-        let n = scene.grid.n;
-        let one = Spectrum::splat(1.0, n);
-        buf.splat_from(
-            Layer::Medium,
-            pixel as usize,
-            Some(light),
-            &v.0[..n],
-            &one.0[..n],
-            norm,
-        );
-    }
+    let one = Spectrum::splat(1.0, n);
+    buf.splat_from(
+        layer,
+        pixel as usize,
+        Some(light),
+        &v.0[..n],
+        &one.0[..n],
+        norm,
+    );
 }

@@ -398,9 +398,12 @@ impl PathStep for ForwardTracer<'_> {
         };
         if self.deposits {
             self.gather_volumes(Some(m), ray, reach, Some(&flight));
-            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain) {
-                let (fl, u) = ((&flight, &self.flux), (norm, rng.random()));
-                camera_splat::splat_medium(self.scene, (m, ray), fl, self.light, self.buf, u);
+            let scene = self.scene;
+            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain)
+                && let Some(v) =
+                    camera_splat::connect_medium(scene, (m, ray), &flight, &self.flux, rng.random())
+            {
+                camera_splat::put(self.buf, Layer::Medium, v, self.light, scene.grid.n, norm);
             }
         }
         if self.to_discs {
@@ -452,9 +455,10 @@ impl PathStep for ForwardTracer<'_> {
         let material = &scene.materials[mat_id as usize];
         let wo = -ray.d;
         if self.deposits && material.diffuse_probability(wo, hit) > 0.0 {
-            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain) {
-                let at = (hit, ray.d, mat_id);
-                camera_splat::splat(scene, at, &self.flux, self.light, self.buf, norm);
+            if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain)
+                && let Some(v) = camera_splat::connect(scene, hit, ray.d, mat_id, &self.flux)
+            {
+                camera_splat::put(self.buf, Layer::Surface, v, self.light, scene.grid.n, norm);
             }
             self.gather_surfaces(hit, ray.d);
         }
