@@ -187,40 +187,19 @@ fn first_surface_spheres_leave_direct_light_to_the_splat() {
 #[test]
 fn caustic_splat_matches_the_gathered_caustic() {
     let t = |splat: bool| {
-        format!(
-            r#"
-[film]
-bins = 4
-[camera]
-{ORTHOGRAPHIC}
-[integrator]
-direct = "photons"
-splat_to_camera = {splat}
-radius = 0.01
-forward_rays = 100000
-camera_samples = 4
-[materials.floor]
-type = "lambert"
-albedo = 0.6
+        text(ORTHOGRAPHIC, false, "photons", 0.01).replace(
+            "splat_to_camera = true",
+            &format!("splat_to_camera = {splat}"),
+        ) + r#"
 [materials.mirror]
 type = "mirror"
 albedo = 0.9
 [[shapes]]
 type = "quad"
-size = [8, 8]
-material = "floor"
-transform = {{ rotate = [-90, 0, 0] }}
-[[shapes]]
-type = "quad"
 size = [8, 3]
 material = "mirror"
-transform = {{ rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }}
-[[lights]]
-type = "point"
-position = [0.3, 1.0, -0.2]
-power = 100.0
+transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
 "#
-        )
     };
     let (on, off) = (scene(&t(true), &[]), scene(&t(false), &[]));
     same_expectation("mirror caustic", (&on, 900), (&off, 1100), "", 0.1);
