@@ -63,7 +63,21 @@ pub struct ExpMixture {
 
 impl ExpMixture {
     /// `rates[l]` per bin, mixed with probabilities `p` (summing to 1 over the `n` bins).
+    /// Equal rates in every bin (a grey medium) make one part: the same density, without a
+    /// mixture to build, pick from and sum (an exp per bin each, a sixth of a camera path's
+    /// time in a grey fog).
     pub fn new(rates: &Spectrum, p: &Spectrum, n: usize, d: f32) -> Self {
+        let rates_n = &rates.0[..n];
+        if n > 0 && rates_n.iter().all(|&k| k == rates_n[0]) {
+            let one = Spectrum::single(0, 1.0);
+            let mut parts = [TruncatedExp::new(0.0, d); MAX_BINS];
+            parts[0] = TruncatedExp::new(rates_n[0], d);
+            return Self {
+                parts,
+                p: one,
+                n: 1,
+            };
+        }
         let mut parts = [TruncatedExp::new(0.0, d); MAX_BINS];
         for (part, &k) in parts.iter_mut().zip(&rates.0[..n]) {
             *part = TruncatedExp::new(k, d);
@@ -267,6 +281,28 @@ mod tests {
             |t| m.pdf(t),
         );
         eprintln!("exponential mixture: chi2 {chi2:.1} ({dof} dof)");
+        assert!(chi2 < CHI2_BOUND, "chi2 {chi2}");
+    }
+
+    /// Equal rates collapse to one part with the single exponential's density and samples.
+    #[test]
+    fn grey_mixture_is_one_exponential() {
+        let rates = Spectrum::from_slice(&[1.7; 8]);
+        let p = Spectrum::from_slice(&[0.125; 8]);
+        let m = ExpMixture::new(&rates, &p, 8, 0.9);
+        let e = TruncatedExp::new(1.7, 0.9);
+        for t in [0.0f32, 0.2, 0.45, 0.9] {
+            assert!((m.pdf(t) - e.pdf(t)).abs() <= 1e-6 * e.pdf(t), "t={t}");
+        }
+        let mut rng = Pcg64Mcg::seed_from_u64(11);
+        let (chi2, dof) = chi_square(
+            0.0,
+            0.9,
+            200_000,
+            |u| m.sample(rng.random(), u),
+            |t| e.pdf(t),
+        );
+        eprintln!("grey mixture: chi2 {chi2:.1} ({dof} dof)");
         assert!(chi2 < CHI2_BOUND, "chi2 {chi2}");
     }
 
