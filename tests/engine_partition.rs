@@ -12,39 +12,10 @@ mod common;
 
 use std::path::Path;
 
-use brume::film::SpectralImage;
 use common::*;
 
 const Z: f64 = 4.0;
 const RUNS: u64 = 10;
-
-/// Per layer ("medium", "surface"), per bin: the image mean over `RUNS` one-pass renders and
-/// its standard error.
-fn layer_means(s: &Setup) -> Vec<(String, Vec<f64>, Vec<f64>)> {
-    let n = s.grid.n;
-    let imgs: Vec<SpectralImage> = (0..RUNS).map(|r| render(s, 900 + r, 1)).collect();
-    let names: Vec<String> = imgs[0].layers.iter().map(|(k, _)| k.clone()).collect();
-    names
-        .iter()
-        .enumerate()
-        .map(|(li, name)| {
-            let samples: Vec<Vec<f64>> = imgs
-                .iter()
-                .map(|img| {
-                    let data = &img.layers[li].1;
-                    let pixels = data.len() / n;
-                    (0..n)
-                        .map(|b| {
-                            (0..pixels).map(|p| data[p * n + b] as f64).sum::<f64>() / pixels as f64
-                        })
-                        .collect()
-                })
-                .collect();
-            let (mean, se) = mean_and_se(&samples, n);
-            (name.clone(), mean, se)
-        })
-        .collect()
-}
 
 fn check(name: &str, file: &str, extra: &[&str]) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -69,7 +40,7 @@ fn check(name: &str, file: &str, extra: &[&str]) {
             for mode in ["nee", "photons"] {
                 let mut s = sets.clone();
                 s.push(format!("integrator.direct=\"{mode}\""));
-                by_mode.push(layer_means(&scene_file(&path, &s)));
+                by_mode.push(layer_means(&scene_file(&path, &s), RUNS, 900));
             }
             for ((layer, a, sa), (_, b, sb)) in by_mode[0].iter().zip(&by_mode[1]) {
                 for bin in 0..a.len() {

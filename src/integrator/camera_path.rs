@@ -169,6 +169,22 @@ impl<'a> CameraPath<'a> {
         })
     }
 
+    /// `integrator.expected_transmission`: whatever the walk's outcome, the path goes on past
+    /// the segment with throughput times `e^{-st_l len}` per bin. The walk's `Transmitted`
+    /// weight `e^{-st_l len} / Tmix(len)` comes with probability `Tmix(len)`, so this is its
+    /// expectation: the part behind the segment keeps its mean per bin and loses the coin's
+    /// variance, while the segment's volumes (left before the outcome) are unchanged.
+    fn expected_transmission(&mut self, m: u32, len: f32) -> MediumStep {
+        let tr = self.scene.media[m as usize]
+            .sigma_t
+            .transmittance(len, self.n);
+        if tr.is_zero() {
+            return MediumStep::Ended;
+        }
+        self.w *= tr;
+        MediumStep::Reached
+    }
+
     /// Applies the end of a medium segment to the path (method note 4).
     fn after_walk(&mut self, end: WalkEnd) -> MediumStep {
         match end {
@@ -221,6 +237,10 @@ impl PathStep for CameraPath<'_> {
             Estimator::TruncatedCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
             Estimator::LongCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
         };
+        // An endless segment (a medium without a boundary ahead) keeps the walk's outcome.
+        if integrator.settings.expected_transmission && self.first_extinction() && len.is_finite() {
+            return self.expected_transmission(m, len);
+        }
         self.after_walk(end)
     }
 

@@ -75,6 +75,14 @@ pub struct IntegratorDesc {
     /// small spots (a laser's). Off: the paper's surface spheres gather it.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub splat_to_camera: bool,
+    /// In `first-extinction` mode, camera paths always go on past a medium segment to what lies
+    /// behind it (a surface, another medium), weighted by the segment's transmittance, instead
+    /// of only when their walk gets through (weight 1, probability the transmittance). The
+    /// segment's volumes are the walk's as before; only the surface part's indicator is
+    /// replaced by its expectation, so both parts stay unbiased and the surface behind a fog
+    /// loses the noise of that coin. Off: the paper's method.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub expected_transmission: bool,
     /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
     /// after pass p. 1 keeps the radius fixed (the paper's setting).
     pub alpha: f32,
@@ -113,6 +121,7 @@ impl Default for IntegratorDesc {
             radius: Setting::Auto,
             radius_indirect: None,
             splat_to_camera: false,
+            expected_transmission: false,
             alpha: 1.0,
             forward_rays: Setting::Auto,
             camera_samples: Setting::Auto,

@@ -123,3 +123,31 @@ pub fn assert_bins(name: &str, mean: &[f64], se: &[f64], expected: &[f64], z: f6
         );
     }
 }
+
+/// Per layer ("medium", "surface"), per bin: the image mean over `runs` one-pass renders (seeds
+/// `seed0..`) and its standard error.
+pub fn layer_means(s: &Setup, runs: u64, seed0: u64) -> Vec<(String, Vec<f64>, Vec<f64>)> {
+    let n = s.grid.n;
+    let imgs: Vec<SpectralImage> = (0..runs).map(|r| render(s, seed0 + r, 1)).collect();
+    let names: Vec<String> = imgs[0].layers.iter().map(|(k, _)| k.clone()).collect();
+    names
+        .iter()
+        .enumerate()
+        .map(|(li, name)| {
+            let samples: Vec<Vec<f64>> = imgs
+                .iter()
+                .map(|img| {
+                    let data = &img.layers[li].1;
+                    let pixels = data.len() / n;
+                    (0..n)
+                        .map(|b| {
+                            (0..pixels).map(|p| data[p * n + b] as f64).sum::<f64>() / pixels as f64
+                        })
+                        .collect()
+                })
+                .collect();
+            let (mean, se) = mean_and_se(&samples, n);
+            (name.clone(), mean, se)
+        })
+        .collect()
+}
