@@ -69,10 +69,30 @@ def test_fog_cube_translation():
     d = mitsuba_scene.load(ROOT / "scenes" / "fog-cube.toml", 1)
     box = d["shape0"]
     assert box["type"] == "cube" and box["bsdf"]["type"] == "null"
-    med = box["interior"]
+    # The box's interior refers to the scene's medium (shared by every shape that bounds it).
+    interior = box["interior"]
+    med = d[interior["id"]] if interior.get("type") == "ref" else interior
     assert med["sigma_t"] == pytest.approx(1.0) and med["albedo"] == pytest.approx(0.8)
     assert med["phase"]["g"] == pytest.approx(0.5)
     assert d["shape1"]["bsdf"]["reflectance"]["type"] == "bitmap"
     d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = 16
     img = np.asarray(mi.render(mi.load_dict(d), spp=2))
     assert img.shape == (16, 16, 3) and np.all(np.isfinite(img)) and img.mean() > 0
+
+
+def test_layers_decomposition_recovers_both_layers():
+    """layers.py: the whole image minus T x the wall seen from the gap is the medium layer, and
+    T x the wall is the surface layer, for a grey slab of the scene's extinction."""
+    import layers
+
+    desc = {"media": {"fog": {"sigma_s": 0.8, "sigma_a": 0.2}}}
+    t = layers.slab_transmittance(desc, 1.0)
+    assert abs(t - np.exp(-1.0)) < 1e-12
+    rng = np.random.default_rng(7)
+    medium = rng.uniform(0.0, 1.0, (8, 8, 3))
+    wall = rng.uniform(0.0, 1.0, (8, 8, 3))
+    got = layers.mitsuba_layers(medium + t * wall, wall, t)
+    assert np.allclose(got["medium"], medium) and np.allclose(got["surface"], t * wall)
+    # A chromatic medium has no single transmittance: refused.
+    with pytest.raises(SystemExit):
+        layers.slab_transmittance({"media": {"fog": {"sigma_s": "rayleigh", "sigma_a": 0.0}}}, 1.0)

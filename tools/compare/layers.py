@@ -1,0 +1,237 @@
+"""Per-layer equal-time errors of brume and Mitsuba 3 on a slab scene (fog-cube): the `medium`
+layer (light the fog scatters towards the camera) and the `surface` layer (the wall seen
+through the fog).
+
+Mitsuba has no layer split, so its layers come from two renders of equal CPU time:
+- the scene as it is (the whole image W), and
+- the wall alone, seen by the same orthographic camera moved into the vacuum gap between the
+  fog's back face and the wall (`--gap-z`): the wall's outgoing radiance L with all its light,
+  fog-scattered included, and nothing in front of it.
+For an orthographic camera normal to a wall behind a homogeneous slab of thickness `--slab`
+that every pixel's ray crosses, the surface layer is `S = T L` with `T = exp(-sigma_t slab)`
+exactly, and the medium layer is `M = W - S`. Each of the two renders gets half the budget, so
+Mitsuba's layers cost the same CPU time as brume's one render, which writes both layers.
+(Spent on one render only, Mitsuba's surface error would be smaller by sqrt(2); the medium
+layer needs both.)
+
+Errors: brume against its reference's layers (compare.py's reference halves in --work, whose
+difference is subtracted as the reference's own noise); Mitsuba against its own layered
+reference (compare.py's `mitsuba-ref.exr` and a gap reference of the same CPU time rendered
+here), its noise removed with the spp ratio (`compare.own_share`). Relative RMSE = RMSE / the
+layer reference's mean. Run compare.py first with --work DIR for the references. `--brume-only` prints brume's layer
+errors alone (a variant's with `--brume-set`), and with `--pairs N` the per-pixel noise of each
+layer at N passes.
+
+  DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so .venv/bin/python tools/compare/layers.py \
+      scenes/fog-cube.toml --work /tmp/cube-work --variant llvm_ad_spectral --runs 3 --times 5 15 60 \
+      --out docs/images/perf-fog-cube-layers
+"""
+
+import argparse
+import csv
+import json
+import math
+import statistics
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import OpenEXR
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import compare  # noqa: E402
+import mitsuba_scene  # noqa: E402
+
+LAYERS = ("medium", "surface")
+
+
+def read_layers(path: Path) -> dict[str, np.ndarray]:
+    """brume's EXR component layers, RGB per pixel."""
+    with OpenEXR.File(str(path)) as f:
+        ch = f.channels()
+        return {k: np.asarray(ch[k].pixels, dtype=np.float64) for k in LAYERS}
+
+
+def slab_transmittance(desc: dict, slab: float) -> float:
+    """exp(-sigma_t slab) of the scene's only medium, which must be grey."""
+    media = desc.get("media", {})
+    if len(media) != 1:
+        raise SystemExit(f"layers.py: needs exactly one medium, the scene has {len(media)}")
+    (m,) = media.values()
+    coeffs = (m.get("sigma_s", 0.0), m.get("sigma_a", 0.0))
+    if not all(isinstance(v, (int, float)) for v in coeffs):
+        raise SystemExit("layers.py: the medium must be grey (numbers for sigma_s and sigma_a)")
+    return math.exp(-sum(coeffs) * slab)
+
+
+def mitsuba_layers(whole: np.ndarray, wall: np.ndarray, t: float) -> dict[str, np.ndarray]:
+    """Mitsuba's layers from the whole image and the gap camera's wall image."""
+    s = t * wall
+    return {"medium": whole - s, "surface": s}
+
+
+class GapMitsuba(compare.Mitsuba):
+    """compare.Mitsuba whose camera sits at z = gap_z looking along -z (near clip below the
+    gap, which Mitsuba's default of 1 cm would cut)."""
+
+    gap_z = -0.5001
+
+    def _dict(self, scene, spp, floor, drop):
+        d = super()._dict(scene, spp, floor, drop)
+        desc = tomllib.loads(Path(scene).read_text())
+        cam = dict(desc["camera"])
+        cam["position"] = [0.0, 0.0, self.gap_z]
+        cam["look_at"] = [0.0, 0.0, self.gap_z - 1.0]
+        sensor = mitsuba_scene._camera(self.mi, cam, spp)
+        sensor["near_clip"] = 1e-6
+        d["sensor"] = sensor
+        return d
+
+
+def rel(e: float, mean: float) -> float:
+    return math.sqrt(max(e, 0.0)) / mean
+
+
+def brume_variant(a, b_ref: dict, b_var: dict) -> None:
+    """brume's layer errors at each budget (rescaled to exactly the budget by sqrt(CPU s /
+    budget)), and with --pairs N the relative standard deviation per pixel of each layer from
+    two N-pass renders of other seeds (sqrt(mean (A - B)^2 / 2) / the layer's mean)."""
+    label = " ".join(a.brume_set) or "scene settings"
+    for i, t in enumerate(a.times):
+        for run in range(a.runs):
+            out = a.work / f"layers-brume-only-{t:g}.exr"
+            _, bt = compare.brume_render(a.brume, a.scene, t, 5000 + i + 100 * run, out, a.brume_set, "cpu")
+            img = read_layers(out)
+            f = math.sqrt(bt / t)
+            errs = " ".join(f"{k} {rel(compare.mse(img[k], b_ref[k]) - b_var[k], b_ref[k].mean()) * f:.4f}" for k in LAYERS)
+            print(f"{label}: t={t:g} run {run}: {bt:.1f} CPU s, at {t:g} s: {errs}", flush=True)
+    if a.pairs:
+        imgs = []
+        for seed in (11, 12):
+            out = a.work / f"layers-pair-{seed}.exr"
+            cmd = [a.brume, "render", str(a.scene), "--seed", str(seed), "--passes", str(a.pairs), "-o", str(out), "--quiet"]
+            for s_ in a.brume_set:
+                cmd += ["--set", s_]
+            compare.run_child_cpu(cmd)
+            imgs.append(read_layers(out))
+        sds = " ".join(f"{k} {rel(compare.mse(imgs[0][k], imgs[1][k]) / 2.0, b_ref[k].mean()):.4f}" for k in LAYERS)
+        print(f"{label}: {a.pairs} passes, relative sd per pixel: {sds}", flush=True)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scene", type=Path)
+    ap.add_argument("--brume", default="target/release/brume")
+    ap.add_argument("--variant", default="llvm_ad_spectral")
+    ap.add_argument("--work", type=Path, required=True, help="compare.py's --work folder (its references)")
+    ap.add_argument("--times", type=float, nargs="+", default=[5, 15, 60])
+    ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--slab", type=float, default=1.0, help="fog thickness every camera ray crosses (m)")
+    ap.add_argument("--gap-z", type=float, default=-0.5001, help="z of the wall camera, between fog and wall")
+    ap.add_argument("--gap-ref-seconds", type=float, default=None, help="default: the whole reference's CPU s")
+    ap.add_argument("--chunk-spp", type=int, default=4)
+    ap.add_argument("--out", type=Path, default=None, help="prefix of the CSV and JSON (not with --brume-only)")
+    ap.add_argument("--brume-only", action="store_true", help="brume's layer errors only (with --brume-set: a variant's), printed")
+    ap.add_argument("--brume-set", action="append", default=[], help="brume --set KEY=VALUE (repeatable), --brume-only")
+    ap.add_argument("--pairs", type=int, default=None, help="--brume-only: also two renders of this many passes; their layers' relative sd")
+    a = ap.parse_args()
+    if not a.brume_only and a.out is None:
+        ap.error("--out is needed (or --brume-only)")
+    if a.brume_set and not a.brume_only:
+        ap.error("--brume-set needs --brume-only (Mitsuba renders the scene as it is)")
+
+    desc = tomllib.loads(a.scene.read_text())
+    if desc["camera"].get("type") != "orthographic":
+        raise SystemExit("layers.py: the decomposition needs an orthographic camera")
+    trans = slab_transmittance(desc, a.slab)
+    meta = json.loads((a.work / "refs.json").read_text())
+    if meta["mitsuba"].get("clock") != "cpu" or meta["brume"].get("clock") != "cpu":
+        raise SystemExit("layers.py: the references must be timed on the cpu clock")
+
+    # brume's reference layers and their noise (halves).
+    ha, hb = read_layers(a.work / "brume-ref-a.exr"), read_layers(a.work / "brume-ref-b.exr")
+    b_ref = {k: 0.5 * (ha[k] + hb[k]) for k in LAYERS}
+    b_var = {k: compare.mse(ha[k], hb[k]) / 4.0 for k in LAYERS}
+
+    if a.brume_only:
+        brume_variant(a, b_ref, b_var)
+        return
+    # Mitsuba: the whole scene and the gap camera, each with its reference.
+    whole = compare.Mitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], 0.0, None, clock="cpu")
+    GapMitsuba.gap_z = a.gap_z
+    gap = GapMitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], 0.0, None, clock="cpu")
+    whole.seed, gap.seed = 10**7, 2 * 10**7
+    w_ref, w_ref_spp = compare.read_rgb(a.work / "mitsuba-ref.exr"), meta["mitsuba"]["spp"]
+    gap_path = a.work / "mitsuba-gap-ref.exr"
+    if "mitsuba_gap" in meta and gap_path.exists():
+        g_ref, g_ref_spp = compare.read_rgb(gap_path), meta["mitsuba_gap"]["spp"]
+    else:
+        g_ref, g_t, g_ref_spp = gap.render_wall(a.gap_ref_seconds or meta["mitsuba"]["seconds"])
+        compare.write_rgb(gap_path, g_ref)
+        meta["mitsuba_gap"] = {"seconds": g_t, "spp": g_ref_spp, "gap_z": a.gap_z, "clock": "cpu"}
+        (a.work / "refs.json").write_text(json.dumps(meta, indent=2))
+    m_ref = mitsuba_layers(w_ref, g_ref, trans)
+    # The decomposition checked on the references: brume's surface layer against T x Mitsuba's
+    # wall (scaled by compare.py's fitted k), and the medium layers likewise.
+    agreement = {
+        "transmittance": trans,
+        **{
+            f"{k}_mean_brume_over_mitsuba": float(b_ref[k].mean() / m_ref[k].mean())
+            for k in LAYERS
+        },
+        **{
+            f"{k}_rel_rmse_between_references": rel(
+                compare.mse(b_ref[k], m_ref[k] * float(b_ref[k].mean() / m_ref[k].mean())), b_ref[k].mean()
+            )
+            for k in LAYERS
+        },
+        "gap_ref_spp": g_ref_spp,
+        "whole_ref_spp": w_ref_spp,
+    }
+    print(json.dumps(agreement, indent=2), flush=True)
+
+    rows = []
+    for i, t in enumerate(a.times):
+        for run in range(a.runs):
+            out = a.work / f"layers-brume-{t:g}.exr"
+            _, bt = compare.brume_render(a.brume, a.scene, t, 5000 + i + 100 * run, out, [], "cpu")
+            img = read_layers(out)
+            for k in LAYERS:
+                e = compare.mse(img[k], b_ref[k]) - b_var[k]
+                rows.append({"renderer": "brume", "run": run, "budget_s": t, "measured_s": bt, "layer": k,
+                             "rel_rmse": rel(e, b_ref[k].mean())})
+            w, wt, wspp = whole.render_wall(t / 2)
+            g, gt, gspp = gap.render_wall(t / 2)
+            lay = mitsuba_layers(w, g, trans)
+            share = {"surface": compare.own_share(gspp, g_ref_spp),
+                     "medium": 0.5 * (compare.own_share(wspp, w_ref_spp) + compare.own_share(gspp, g_ref_spp))}
+            for k in LAYERS:
+                e = compare.mse(lay[k], m_ref[k]) * share[k]
+                rows.append({"renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": wt + gt, "layer": k,
+                             "rel_rmse": rel(e, m_ref[k].mean()), "spp": f"{wspp}+{gspp}"})
+            print(f"run {run} t={t:g}: brume {bt:.1f} s, mitsuba {wt:.1f} + {gt:.1f} s ({wspp} + {gspp} spp)", flush=True)
+
+    with (a.out.parent / (a.out.name + ".csv")).open("w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=["renderer", "run", "budget_s", "measured_s", "layer", "rel_rmse", "spp"])
+        wr.writeheader()
+        wr.writerows(rows)
+    summary = {"agreement": agreement, "budgets": {}}
+    for t in a.times:
+        for k in LAYERS:
+            b = [r for r in rows if r["renderer"] == "brume" and r["budget_s"] == t and r["layer"] == k]
+            m = [r for r in rows if r["renderer"] == "mitsuba" and r["budget_s"] == t and r["layer"] == k]
+            bs, ms = statistics.mean(r["measured_s"] for r in b), statistics.mean(r["measured_s"] for r in m)
+            be, me = statistics.mean(r["rel_rmse"] for r in b), statistics.mean(r["rel_rmse"] for r in m)
+            summary["budgets"].setdefault(f"{t:g}", {})[k] = {
+                "brume_s": bs, "mitsuba_s": ms, "brume_rel_rmse": be, "mitsuba_rel_rmse": me,
+                "brume_sd": statistics.stdev(r["rel_rmse"] for r in b) if len(b) > 1 else 0.0,
+                "mitsuba_sd": statistics.stdev(r["rel_rmse"] for r in m) if len(m) > 1 else 0.0,
+                "ratio": be / me, "ratio_equal_time": be / me * math.sqrt(bs / ms),
+            }
+    (a.out.parent / (a.out.name + "-summary.json")).write_text(json.dumps(summary, indent=2))
+    print(json.dumps(summary["budgets"], indent=2))
+
+
+if __name__ == "__main__":
+    main()
