@@ -1,26 +1,24 @@
-"""Per-layer equal-time errors of brume and Mitsuba 3 on a slab scene (fog-cube): the `medium`
-layer (light the fog scatters towards the camera) and the `surface` layer (the wall seen
-through the fog).
+"""Per-layer equal-time errors of brume and Mitsuba 3: the `medium` layer (light the media
+scatter towards the camera) and the `surface` layer (the surfaces seen through the media), on a
+scene with one grey medium (fog-cube, fog-room-laser).
 
 Mitsuba has no layer split, so its layers come from two renders of equal CPU time:
 - the scene as it is (the whole image W), and
-- the wall alone, seen by the same orthographic camera moved into the vacuum gap between the
-  fog's back face and the wall (`--gap-z`): the wall's outgoing radiance L with all its light,
-  fog-scattered included, and nothing in front of it.
-For an orthographic camera normal to a wall behind a homogeneous slab of thickness `--slab`
-that every pixel's ray crosses, the surface layer is `S = T L` with `T = exp(-sigma_t slab)`
-exactly, and the medium layer is `M = W - S`. Each of the two renders gets half the budget, so
-Mitsuba's layers cost the same CPU time as brume's one render, which writes both layers.
-(Spent on one render only, Mitsuba's surface error would be smaller by sqrt(2); the medium
-layer needs both.)
+- the surface layer S alone, by `surface_layer.py`: each camera ray walks through null
+  boundaries to its first surface, and Mitsuba's own integrator (volpath) gives the radiance
+  leaving that surface towards the camera, times the transmittance of the media in front of it.
+The medium layer is M = W - S. Each render gets half the budget, so Mitsuba's layers cost the
+same CPU time as brume's one render, which writes both layers. (Spent on S alone, Mitsuba's
+surface error would be smaller by sqrt(2); M needs both renders and carries the noise of both.)
 
 Errors: brume against its reference's layers (compare.py's reference halves in --work, whose
 difference is subtracted as the reference's own noise); Mitsuba against its own layered
-reference (compare.py's `mitsuba-ref.exr` and a gap reference of the same CPU time rendered
+reference (compare.py's `mitsuba-ref.exr` and a surface reference of the same CPU time rendered
 here), its noise removed with the spp ratio (`compare.own_share`). Relative RMSE = RMSE / the
-layer reference's mean. Run compare.py first with --work DIR for the references. `--brume-only` prints brume's layer
-errors alone (a variant's with `--brume-set`), and with `--pairs N` the per-pixel noise of each
-layer at N passes.
+layer reference's mean. Run compare.py first with --work DIR for the references. Mitsuba is
+charged as compare.py charges it (a Python glossy floor as if native, `--calib-seconds`).
+`--brume-only` prints brume's layer errors alone (a variant's with `--brume-set`), and with
+`--pairs N` the per-pixel noise of each layer at N passes.
 
   DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so .venv/bin/python tools/compare/layers.py \
       scenes/fog-cube.toml --work /tmp/cube-work --variant llvm_ad_spectral --runs 3 --times 5 15 60 \
@@ -41,7 +39,6 @@ import OpenEXR
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import compare  # noqa: E402
-import mitsuba_scene  # noqa: E402
 
 LAYERS = ("medium", "surface")
 
@@ -53,8 +50,8 @@ def read_layers(path: Path) -> dict[str, np.ndarray]:
         return {k: np.asarray(ch[k].pixels, dtype=np.float64) for k in LAYERS}
 
 
-def slab_transmittance(desc: dict, slab: float) -> float:
-    """exp(-sigma_t slab) of the scene's only medium, which must be grey."""
+def grey_sigma_t(desc: dict) -> float:
+    """sigma_t of the scene's only medium, which must be grey."""
     media = desc.get("media", {})
     if len(media) != 1:
         raise SystemExit(f"layers.py: needs exactly one medium, the scene has {len(media)}")
@@ -62,30 +59,22 @@ def slab_transmittance(desc: dict, slab: float) -> float:
     coeffs = (m.get("sigma_s", 0.0), m.get("sigma_a", 0.0))
     if not all(isinstance(v, (int, float)) for v in coeffs):
         raise SystemExit("layers.py: the medium must be grey (numbers for sigma_s and sigma_a)")
-    return math.exp(-sum(coeffs) * slab)
+    return float(sum(coeffs))
 
 
-def mitsuba_layers(whole: np.ndarray, wall: np.ndarray, t: float) -> dict[str, np.ndarray]:
-    """Mitsuba's layers from the whole image and the gap camera's wall image."""
-    s = t * wall
-    return {"medium": whole - s, "surface": s}
+def mitsuba_layers(whole: np.ndarray, surface: np.ndarray) -> dict[str, np.ndarray]:
+    """Mitsuba's layers from the whole image and the surface layer."""
+    return {"medium": whole - surface, "surface": surface}
 
 
-class GapMitsuba(compare.Mitsuba):
-    """compare.Mitsuba whose camera sits at z = gap_z looking along -z (near clip below the
-    gap, which Mitsuba's default of 1 cm would cut)."""
+class SurfaceMitsuba(compare.Mitsuba):
+    """compare.Mitsuba rendering the surface layer: its integrator wrapped in surface_layer."""
 
-    gap_z = -0.5001
+    sigma_t = 0.0
 
     def _dict(self, scene, spp, floor, drop):
         d = super()._dict(scene, spp, floor, drop)
-        desc = tomllib.loads(Path(scene).read_text())
-        cam = dict(desc["camera"])
-        cam["position"] = [0.0, 0.0, self.gap_z]
-        cam["look_at"] = [0.0, 0.0, self.gap_z - 1.0]
-        sensor = mitsuba_scene._camera(self.mi, cam, spp)
-        sensor["near_clip"] = 1e-6
-        d["sensor"] = sensor
+        d["integrator"] = {"type": "surface_layer", "inner": d["integrator"], "sigma_t": self.sigma_t}
         return d
 
 
@@ -127,9 +116,8 @@ def main() -> None:
     ap.add_argument("--work", type=Path, required=True, help="compare.py's --work folder (its references)")
     ap.add_argument("--times", type=float, nargs="+", default=[5, 15, 60])
     ap.add_argument("--runs", type=int, default=1)
-    ap.add_argument("--slab", type=float, default=1.0, help="fog thickness every camera ray crosses (m)")
-    ap.add_argument("--gap-z", type=float, default=-0.5001, help="z of the wall camera, between fog and wall")
-    ap.add_argument("--gap-ref-seconds", type=float, default=None, help="default: the whole reference's CPU s")
+    ap.add_argument("--surface-ref-seconds", type=float, default=None, help="default: the whole reference's CPU s")
+    ap.add_argument("--calib-seconds", type=float, default=10.0, help="as compare.py: a Python glossy floor's native cost")
     ap.add_argument("--chunk-spp", type=int, default=4)
     ap.add_argument("--out", type=Path, default=None, help="prefix of the CSV and JSON (not with --brume-only)")
     ap.add_argument("--brume-only", action="store_true", help="brume's layer errors only (with --brume-set: a variant's), printed")
@@ -142,9 +130,7 @@ def main() -> None:
         ap.error("--brume-set needs --brume-only (Mitsuba renders the scene as it is)")
 
     desc = tomllib.loads(a.scene.read_text())
-    if desc["camera"].get("type") != "orthographic":
-        raise SystemExit("layers.py: the decomposition needs an orthographic camera")
-    trans = slab_transmittance(desc, a.slab)
+    sigma_t = grey_sigma_t(desc)
     meta = json.loads((a.work / "refs.json").read_text())
     if meta["mitsuba"].get("clock") != "cpu" or meta["brume"].get("clock") != "cpu":
         raise SystemExit("layers.py: the references must be timed on the cpu clock")
@@ -157,25 +143,28 @@ def main() -> None:
     if a.brume_only:
         brume_variant(a, b_ref, b_var)
         return
-    # Mitsuba: the whole scene and the gap camera, each with its reference.
-    whole = compare.Mitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], 0.0, None, clock="cpu")
-    GapMitsuba.gap_z = a.gap_z
-    gap = GapMitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], 0.0, None, clock="cpu")
-    whole.seed, gap.seed = 10**7, 2 * 10**7
+    # Mitsuba: the whole scene and its surface layer, each with its reference.
+    whole = compare.Mitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, clock="cpu")
+    import surface_layer  # after compare.Mitsuba has set mitsuba's variant
+
+    surface_layer.register()
+    SurfaceMitsuba.sigma_t = sigma_t
+    surf = SurfaceMitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, clock="cpu")
+    whole.seed, surf.seed = 10**7, 2 * 10**7
     w_ref, w_ref_spp = compare.read_rgb(a.work / "mitsuba-ref.exr"), meta["mitsuba"]["spp"]
-    gap_path = a.work / "mitsuba-gap-ref.exr"
-    if "mitsuba_gap" in meta and gap_path.exists():
-        g_ref, g_ref_spp = compare.read_rgb(gap_path), meta["mitsuba_gap"]["spp"]
+    s_path = a.work / "mitsuba-surface-ref.exr"
+    if "mitsuba_surface" in meta and s_path.exists():
+        s_ref, s_ref_spp = compare.read_rgb(s_path), meta["mitsuba_surface"]["spp"]
     else:
-        g_ref, g_t, g_ref_spp = gap.render_wall(a.gap_ref_seconds or meta["mitsuba"]["seconds"])
-        compare.write_rgb(gap_path, g_ref)
-        meta["mitsuba_gap"] = {"seconds": g_t, "spp": g_ref_spp, "gap_z": a.gap_z, "clock": "cpu"}
+        s_ref, s_t, s_ref_spp = surf.render_wall(a.surface_ref_seconds or meta["mitsuba"]["seconds"])
+        compare.write_rgb(s_path, s_ref)
+        meta["mitsuba_surface"] = {"seconds": s_t, "spp": s_ref_spp, "sigma_t": sigma_t, "clock": "cpu"}
         (a.work / "refs.json").write_text(json.dumps(meta, indent=2))
-    m_ref = mitsuba_layers(w_ref, g_ref, trans)
-    # The decomposition checked on the references: brume's surface layer against T x Mitsuba's
-    # wall (scaled by compare.py's fitted k), and the medium layers likewise.
+    m_ref = mitsuba_layers(w_ref, s_ref)
+    # The decomposition checked on the references: each layer's mean, brume's over Mitsuba's,
+    # and their relative RMSE after scaling Mitsuba's to brume's mean.
     agreement = {
-        "transmittance": trans,
+        "sigma_t": sigma_t,
         **{
             f"{k}_mean_brume_over_mitsuba": float(b_ref[k].mean() / m_ref[k].mean())
             for k in LAYERS
@@ -186,7 +175,7 @@ def main() -> None:
             )
             for k in LAYERS
         },
-        "gap_ref_spp": g_ref_spp,
+        "surface_ref_spp": s_ref_spp,
         "whole_ref_spp": w_ref_spp,
     }
     print(json.dumps(agreement, indent=2), flush=True)
@@ -201,11 +190,11 @@ def main() -> None:
                 e = compare.mse(img[k], b_ref[k]) - b_var[k]
                 rows.append({"renderer": "brume", "run": run, "budget_s": t, "measured_s": bt, "layer": k,
                              "rel_rmse": rel(e, b_ref[k].mean())})
-            w, wt, wspp = whole.render_wall(t / 2)
-            g, gt, gspp = gap.render_wall(t / 2)
-            lay = mitsuba_layers(w, g, trans)
-            share = {"surface": compare.own_share(gspp, g_ref_spp),
-                     "medium": 0.5 * (compare.own_share(wspp, w_ref_spp) + compare.own_share(gspp, g_ref_spp))}
+            w, wt, wspp = whole.render(t / 2)
+            g, gt, gspp = surf.render(t / 2)
+            lay = mitsuba_layers(w, g)
+            share = {"surface": compare.own_share(gspp, s_ref_spp),
+                     "medium": 0.5 * (compare.own_share(wspp, w_ref_spp) + compare.own_share(gspp, s_ref_spp))}
             for k in LAYERS:
                 e = compare.mse(lay[k], m_ref[k]) * share[k]
                 rows.append({"renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": wt + gt, "layer": k,
