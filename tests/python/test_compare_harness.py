@@ -82,17 +82,18 @@ def test_fog_cube_translation():
 
 def test_layers_decomposition_recovers_both_layers():
     """layers.py: the medium layer is the whole image minus the surface layer; the scene's one
-    grey medium gives the surface integrator its sigma_t, and a chromatic one is refused."""
+    medium gives the surface integrator Mitsuba's own sigma_t (a float when grey)."""
     import layers
 
-    assert layers.grey_sigma_t({"media": {"fog": {"sigma_s": 0.8, "sigma_a": 0.2}}}) == 1.0
+    desc = {"media": {"fog": {"sigma_s": 0.8, "sigma_a": 0.2}}}
+    assert layers.medium_sigma_t(ROOT / "scenes" / "x.toml", desc) == pytest.approx(1.0)
     rng = np.random.default_rng(7)
     medium = rng.uniform(0.0, 1.0, (8, 8, 3))
     surface = rng.uniform(0.0, 1.0, (8, 8, 3))
     got = layers.mitsuba_layers(medium + surface, surface)
     assert np.allclose(got["medium"], medium) and np.array_equal(got["surface"], surface)
     with pytest.raises(SystemExit):
-        layers.grey_sigma_t({"media": {"fog": {"sigma_s": "rayleigh", "sigma_a": 0.0}}})
+        layers.medium_sigma_t(ROOT / "scenes" / "x.toml", {"media": {"a": desc["media"]["fog"], "b": desc["media"]["fog"]}})
 
 
 def test_surface_layer_integrator_sees_the_wall_through_the_fog():

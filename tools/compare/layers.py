@@ -14,7 +14,9 @@ surface error would be smaller by sqrt(2); M needs both renders and carries the 
 Errors: brume against its reference's layers (compare.py's reference halves in --work, whose
 difference is subtracted as the reference's own noise); Mitsuba against its own layered
 reference (compare.py's `mitsuba-ref.exr` and a surface reference of the same CPU time rendered
-here), its noise removed with the spp ratio (`compare.own_share`). Relative RMSE = RMSE / the
+here), its noise removed with the spp ratio (`compare.own_share`), except in a scene with a
+laser, where Mitsuba is measured against brume's reference as compare.py does (its own misses
+most of the beam's light). Relative RMSE = RMSE / the
 layer reference's mean. Run compare.py first with --work DIR for the references. Mitsuba is
 charged as compare.py charges it (a Python glossy floor as if native, `--calib-seconds`).
 `--brume-only` prints brume's layer errors alone (a variant's with `--brume-set`), and with
@@ -39,6 +41,7 @@ import OpenEXR
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import compare  # noqa: E402
+import mitsuba_scene  # noqa: E402
 
 LAYERS = ("medium", "surface")
 
@@ -50,16 +53,14 @@ def read_layers(path: Path) -> dict[str, np.ndarray]:
         return {k: np.asarray(ch[k].pixels, dtype=np.float64) for k in LAYERS}
 
 
-def grey_sigma_t(desc: dict) -> float:
-    """sigma_t of the scene's only medium, which must be grey."""
+def medium_sigma_t(scene: Path, desc: dict):
+    """Mitsuba's sigma_t of the scene's only medium (a float, or a spectrum dict for a chromatic
+    one), as mitsuba_scene translates it."""
     media = desc.get("media", {})
     if len(media) != 1:
         raise SystemExit(f"layers.py: needs exactly one medium, the scene has {len(media)}")
     (m,) = media.values()
-    coeffs = (m.get("sigma_s", 0.0), m.get("sigma_a", 0.0))
-    if not all(isinstance(v, (int, float)) for v in coeffs):
-        raise SystemExit("layers.py: the medium must be grey (numbers for sigma_s and sigma_a)")
-    return float(sum(coeffs))
+    return mitsuba_scene.medium(desc, scene.parent, m, mitsuba_scene.Grid(desc.get("film", {})))["sigma_t"]
 
 
 def mitsuba_layers(whole: np.ndarray, surface: np.ndarray) -> dict[str, np.ndarray]:
@@ -70,12 +71,17 @@ def mitsuba_layers(whole: np.ndarray, surface: np.ndarray) -> dict[str, np.ndarr
 class SurfaceMitsuba(compare.Mitsuba):
     """compare.Mitsuba rendering the surface layer: its integrator wrapped in surface_layer."""
 
-    sigma_t = 0.0
-
     def _dict(self, scene, spp, floor, drop):
         d = super()._dict(scene, spp, floor, drop)
-        d["integrator"] = {"type": "surface_layer", "inner": d["integrator"], "sigma_t": self.sigma_t}
+        # A fresh sigma_t each time: a load consumes the dicts it is given.
+        st = medium_sigma_t(Path(scene), tomllib.loads(Path(scene).read_text()))
+        d["integrator"] = {"type": "surface_layer", "inner": d["integrator"], "sigma_t": st}
         return d
+
+
+def compare_default(key: str) -> str:
+    """What compare.py wrote before refs.json recorded `key`: its only behaviour then."""
+    return {"integrator": "volpath", "spot_profile": "ramp"}[key]
 
 
 def rel(e: float, mean: float) -> float:
@@ -117,6 +123,8 @@ def main() -> None:
     ap.add_argument("--times", type=float, nargs="+", default=[5, 15, 60])
     ap.add_argument("--runs", type=int, default=1)
     ap.add_argument("--surface-ref-seconds", type=float, default=None, help="default: the whole reference's CPU s")
+    ap.add_argument("--integrator", choices=list(mitsuba_scene.INTEGRATORS), default="volpath", help="Mitsuba's, as compare.py's")
+    ap.add_argument("--spot-profile", choices=list(mitsuba_scene.SPOT_PROFILES), default="ramp", help="as compare.py's")
     ap.add_argument("--calib-seconds", type=float, default=10.0, help="as compare.py: a Python glossy floor's native cost")
     ap.add_argument("--chunk-spp", type=int, default=4)
     ap.add_argument("--out", type=Path, default=None, help="prefix of the CSV and JSON (not with --brume-only)")
@@ -130,7 +138,8 @@ def main() -> None:
         ap.error("--brume-set needs --brume-only (Mitsuba renders the scene as it is)")
 
     desc = tomllib.loads(a.scene.read_text())
-    sigma_t = grey_sigma_t(desc)
+    sigma_t = medium_sigma_t(a.scene, desc)
+    lasers = any(light.get("type") == "laser" for light in desc.get("lights", []))
     meta = json.loads((a.work / "refs.json").read_text())
     if meta["mitsuba"].get("clock") != "cpu" or meta["brume"].get("clock") != "cpu":
         raise SystemExit("layers.py: the references must be timed on the cpu clock")
@@ -144,12 +153,15 @@ def main() -> None:
         brume_variant(a, b_ref, b_var)
         return
     # Mitsuba: the whole scene and its surface layer, each with its reference.
-    whole = compare.Mitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, clock="cpu")
+    kw = {"clock": "cpu", "integrator": a.integrator, "spot_profile": a.spot_profile}
+    for key, want in (("integrator", a.integrator), ("spot_profile", a.spot_profile)):
+        if meta["mitsuba"].get(key, compare_default(key)) != want:
+            raise SystemExit(f"layers.py: the Mitsuba reference was rendered with {key} {meta['mitsuba'].get(key)}, not {want}")
+    whole = compare.Mitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, **kw)
     import surface_layer  # after compare.Mitsuba has set mitsuba's variant
 
     surface_layer.register()
-    SurfaceMitsuba.sigma_t = sigma_t
-    surf = SurfaceMitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, clock="cpu")
+    surf = SurfaceMitsuba(a.scene, a.variant, a.chunk_spp, "exact", [], a.calib_seconds, None, **kw)
     whole.seed, surf.seed = 10**7, 2 * 10**7
     w_ref, w_ref_spp = compare.read_rgb(a.work / "mitsuba-ref.exr"), meta["mitsuba"]["spp"]
     s_path = a.work / "mitsuba-surface-ref.exr"
@@ -158,13 +170,13 @@ def main() -> None:
     else:
         s_ref, s_t, s_ref_spp = surf.render_wall(a.surface_ref_seconds or meta["mitsuba"]["seconds"])
         compare.write_rgb(s_path, s_ref)
-        meta["mitsuba_surface"] = {"seconds": s_t, "spp": s_ref_spp, "sigma_t": sigma_t, "clock": "cpu"}
+        meta["mitsuba_surface"] = {"seconds": s_t, "spp": s_ref_spp, "clock": "cpu", "integrator": a.integrator}
         (a.work / "refs.json").write_text(json.dumps(meta, indent=2))
     m_ref = mitsuba_layers(w_ref, s_ref)
     # The decomposition checked on the references: each layer's mean, brume's over Mitsuba's,
     # and their relative RMSE after scaling Mitsuba's to brume's mean.
     agreement = {
-        "sigma_t": sigma_t,
+        "sigma_t": sigma_t if isinstance(sigma_t, float) else "spectrum",
         **{
             f"{k}_mean_brume_over_mitsuba": float(b_ref[k].mean() / m_ref[k].mean())
             for k in LAYERS
@@ -196,9 +208,15 @@ def main() -> None:
             share = {"surface": compare.own_share(gspp, s_ref_spp),
                      "medium": 0.5 * (compare.own_share(wspp, w_ref_spp) + compare.own_share(gspp, s_ref_spp))}
             for k in LAYERS:
-                e = compare.mse(lay[k], m_ref[k]) * share[k]
+                if lasers:
+                    # As compare.py: Mitsuba's reference misses most of a laser's light, so its
+                    # layers are measured against brume's (k = 1, the units'), whose noise is
+                    # removed as for brume.
+                    e, mean = compare.mse(lay[k], b_ref[k]) - b_var[k], b_ref[k].mean()
+                else:
+                    e, mean = compare.mse(lay[k], m_ref[k]) * share[k], m_ref[k].mean()
                 rows.append({"renderer": "mitsuba", "run": run, "budget_s": t, "measured_s": wt + gt, "layer": k,
-                             "rel_rmse": rel(e, m_ref[k].mean()), "spp": f"{wspp}+{gspp}"})
+                             "rel_rmse": rel(e, mean), "spp": f"{wspp}+{gspp}"})
             print(f"run {run} t={t:g}: brume {bt:.1f} s, mitsuba {wt:.1f} + {gt:.1f} s ({wspp} + {gspp} spp)", flush=True)
 
     with (a.out.parent / (a.out.name + ".csv")).open("w", newline="") as f:

@@ -1,10 +1,11 @@
-"""A Mitsuba 3 integrator that renders brume's `surface` layer of a scene with grey media: the
-radiance of the first non-null surface a camera ray meets, attenuated by the media in front of
-it, without the light those media scatter towards the camera.
+"""A Mitsuba 3 integrator that renders brume's `surface` layer of a scene with one homogeneous
+medium: the radiance of the first non-null surface a camera ray meets, attenuated by the medium
+in front of it, without the light the medium scatters towards the camera.
 
 For each camera ray it walks through null (index-matched) boundaries to the first surface with
-a BSDF, adding up the optical depth sigma_t x length of every stretch inside a medium (one grey
-sigma_t per medium: the scene's, given as `sigma_t`), then asks the inner integrator (volpath)
+a BSDF, adding up the optical depth sigma_t x length of every stretch inside the medium
+(`sigma_t`: a float, or the medium's own spectrum, evaluated at each path's wavelengths), then
+asks the inner integrator (volpath)
 for the radiance arriving along a ray that starts a hair (`eps`) in front of that surface, and
 returns it times exp(-depth). That is the surface layer's definition: light whose first
 interaction on the way back from the camera is the surface. The medium layer is the whole image
@@ -25,15 +26,25 @@ class SurfaceLayer(mi.SamplingIntegrator):
     def __init__(self, props):
         super().__init__(props)
         self.inner = props.get("inner")
-        self.sigma_t = props.get("sigma_t", 0.0)
+        st = props.get("sigma_t", 0.0)
+        # A grey medium's float, or a spectrum (a texture evaluated at the path's wavelengths).
+        self.sigma_t, self.sigma_t_tex = (float(st), None) if isinstance(st, (int, float)) else (0.0, st)
         self.eps = props.get("eps", 1e-4)
+
+    def _sigma_t(self, wavelengths):
+        if self.sigma_t_tex is None:
+            return mi.Spectrum(self.sigma_t)
+        si = dr.zeros(mi.SurfaceInteraction3f)
+        si.wavelengths = wavelengths
+        return self.sigma_t_tex.eval(si)
 
     def sample(self, scene, sampler, ray, medium=None, active=True):
         ray = mi.Ray3f(ray)
         active = mi.Bool(active)
         cur = mi.MediumPtr(medium)
         in_medium = cur != None  # noqa: E711 (a pointer array compared lane by lane)
-        depth = mi.Float(0.0)
+        st = self._sigma_t(ray.wavelengths)
+        depth = mi.Spectrum(0.0)
         found = mi.Bool(False)
         walking = mi.Bool(active)
         hit_p = mi.Point3f(0.0)
@@ -42,7 +53,7 @@ class SurfaceLayer(mi.SamplingIntegrator):
             si = scene.ray_intersect(ray, walking)
             valid = walking & si.is_valid()
             null = valid & mi.has_flag(si.bsdf(ray).flags(), mi.BSDFFlags.Null)
-            depth += dr.select(valid & in_medium, si.t * self.sigma_t, 0.0)
+            depth += dr.select(valid & in_medium, si.t * st, 0.0)
             surface = valid & ~null
             hit_p = dr.select(surface, si.p, hit_p)
             hit_medium = dr.select(surface, cur, hit_medium)
