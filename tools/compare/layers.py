@@ -1,6 +1,7 @@
 """Per-layer equal-time errors of brume and Mitsuba 3: the `medium` layer (light the media
 scatter towards the camera) and the `surface` layer (the surfaces seen through the media), on a
-scene with one grey medium (fog-cube, fog-room-laser).
+scene with one homogeneous medium, grey or not, whose surfaces stand in vacuum (fog-cube,
+chromatic-fog, fog-room-laser).
 
 Mitsuba has no layer split, so its layers come from two renders of equal CPU time:
 - the scene as it is (the whole image W), and
