@@ -38,23 +38,14 @@ fn agree(file: &str, extra: &[&str]) {
     for q in ["1", "0.3"] {
         let on = layer_means(&setup(file, q, true, extra), RUNS, 700);
         let off = layer_means(&setup(file, q, false, extra), RUNS, 800);
-        for ((layer, a, sa), (_, b, sb)) in on.iter().zip(&off) {
-            for bin in 0..a.len() {
-                let se = (sa[bin].powi(2) + sb[bin].powi(2)).sqrt();
-                let z = if se > 0.0 {
-                    (a[bin] - b[bin]) / se
-                } else {
-                    0.0
-                };
-                worst = worst.max(z.abs());
-                assert!(
-                    z.abs() <= Z,
-                    "{file} q={q} {layer} bin {bin}: expected {:.4e} sampled {:.4e} (z {z:.2})",
-                    a[bin],
-                    b[bin]
-                );
-            }
-        }
+        let what = format!("{file} q={q}");
+        worst = worst.max(assert_layers_agree(
+            &what,
+            ("expected", "sampled"),
+            &on,
+            &off,
+            Z,
+        ));
     }
     eprintln!("{file}: largest |z| {worst:.2}");
 }

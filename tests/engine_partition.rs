@@ -42,23 +42,9 @@ fn check(name: &str, file: &str, extra: &[&str]) {
                 s.push(format!("integrator.direct=\"{mode}\""));
                 by_mode.push(layer_means(&scene_file(&path, &s), RUNS, 900));
             }
-            for ((layer, a, sa), (_, b, sb)) in by_mode[0].iter().zip(&by_mode[1]) {
-                for bin in 0..a.len() {
-                    let se = (sa[bin].powi(2) + sb[bin].powi(2)).sqrt();
-                    let z = if se > 0.0 {
-                        (a[bin] - b[bin]) / se
-                    } else {
-                        0.0
-                    };
-                    worst = worst.max(z.abs());
-                    assert!(
-                        z.abs() <= Z,
-                        "{name} q={q} {pick} {layer} bin {bin}: nee {:.4e} photons {:.4e} (z {z:.2})",
-                        a[bin],
-                        b[bin]
-                    );
-                }
-            }
+            let what = format!("{name} q={q} {pick}");
+            let w = assert_layers_agree(&what, ("nee", "photons"), &by_mode[0], &by_mode[1], Z);
+            worst = worst.max(w);
         }
     }
     eprintln!("{name}: largest |z| {worst:.2}");

@@ -126,7 +126,7 @@ pub fn assert_bins(name: &str, mean: &[f64], se: &[f64], expected: &[f64], z: f6
 
 /// Per layer ("medium", "surface"), per bin: the image mean over `runs` one-pass renders (seeds
 /// `seed0..`) and its standard error.
-pub fn layer_means(s: &Setup, runs: u64, seed0: u64) -> Vec<(String, Vec<f64>, Vec<f64>)> {
+pub fn layer_means(s: &Setup, runs: u64, seed0: u64) -> LayerMeans {
     let n = s.grid.n;
     let imgs: Vec<SpectralImage> = (0..runs).map(|r| render(s, seed0 + r, 1)).collect();
     let names: Vec<String> = imgs[0].layers.iter().map(|(k, _)| k.clone()).collect();
@@ -150,4 +150,40 @@ pub fn layer_means(s: &Setup, runs: u64, seed0: u64) -> Vec<(String, Vec<f64>, V
             (name.clone(), mean, se)
         })
         .collect()
+}
+
+/// Layer means of `layer_means`: (layer name, mean per bin, standard error per bin).
+pub type LayerMeans = Vec<(String, Vec<f64>, Vec<f64>)>;
+
+/// Asserts that two renders' layer means agree per layer and per bin within |z| <= `z_max`
+/// (their standard errors combined as independent); returns the largest |z|. `what` and the
+/// two `names` label a failure.
+pub fn assert_layers_agree(
+    what: &str,
+    names: (&str, &str),
+    a: &LayerMeans,
+    b: &LayerMeans,
+    z_max: f64,
+) -> f64 {
+    let mut worst = 0.0f64;
+    for ((layer, ma, sa), (_, mb, sb)) in a.iter().zip(b) {
+        for bin in 0..ma.len() {
+            let se = (sa[bin].powi(2) + sb[bin].powi(2)).sqrt();
+            let z = if se > 0.0 {
+                (ma[bin] - mb[bin]) / se
+            } else {
+                0.0
+            };
+            worst = worst.max(z.abs());
+            assert!(
+                z.abs() <= z_max,
+                "{what} {layer} bin {bin}: {} {:.4e} {} {:.4e} (z {z:.2})",
+                names.0,
+                ma[bin],
+                names.1,
+                mb[bin]
+            );
+        }
+    }
+    worst
 }
