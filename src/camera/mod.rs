@@ -107,6 +107,26 @@ impl Camera {
         }
     }
 
+    /// The view frame: position, forward, right and up (unit, orthogonal).
+    fn frame(&self) -> (Vec3, Vec3, Vec3, Vec3) {
+        match *self {
+            Camera::Orthographic {
+                position,
+                forward,
+                right,
+                up,
+                ..
+            }
+            | Camera::Perspective {
+                position,
+                forward,
+                right,
+                up,
+                ..
+            } => (position, forward, right, up),
+        }
+    }
+
     /// Ray through continuous pixel coordinates (x, y).
     pub fn generate_ray(&self, x: f32, y: f32) -> Ray {
         let (w, h) = self.resolution();
@@ -156,39 +176,24 @@ impl Camera {
     pub fn project(&self, p: Vec3) -> Option<Projection> {
         let (w, h) = self.resolution();
         let (wf, hf) = (w as f32, h as f32);
+        let (position, forward, right, up) = self.frame();
+        let d = p - position;
+        let z = d.dot(forward);
+        if z.is_nan() || z <= 0.0 {
+            return None;
+        }
         let (sx, sy, to_camera, dist, importance) = match *self {
             Camera::Orthographic {
-                position,
-                forward,
-                right,
-                up,
                 view_width,
                 view_height,
                 ..
             } => {
-                let d = p - position;
-                let z = d.dot(forward);
-                if z.is_nan() || z <= 0.0 {
-                    return None;
-                }
                 let area = (view_width / wf) * (view_height / hf);
                 let sx = d.dot(right) / (0.5 * view_width);
                 let sy = d.dot(up) / (0.5 * view_height);
                 (sx, sy, -forward, z, 1.0 / area)
             }
-            Camera::Perspective {
-                position,
-                forward,
-                right,
-                up,
-                tan_half_v,
-                ..
-            } => {
-                let d = p - position;
-                let z = d.dot(forward);
-                if z.is_nan() || z <= 0.0 {
-                    return None;
-                }
+            Camera::Perspective { tan_half_v, .. } => {
                 let dist = d.length();
                 let aspect = wf / hf;
                 let sx = d.dot(right) / (z * tan_half_v * aspect);
