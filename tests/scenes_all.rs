@@ -57,3 +57,39 @@ fn every_scene_builds_and_renders_tiny() {
         eprintln!("{}: ok", f.display());
     }
 }
+
+/// Every shipped scene's identity survives its film file (checkpoints, parts and merges of every
+/// scene read back), also with awkward values set from the command line (the report's
+/// `media.fog.g` values, which came back one ulp off and made the file "damaged").
+#[test]
+fn every_scene_film_file_reads_back() {
+    use brume::film::{Film, FilmId, Sampling, checkpoint};
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let part = tmp.path().join("p.brume");
+    let mut runs: Vec<(std::path::PathBuf, Vec<String>)> = std::fs::read_dir(&dir)
+        .expect("scenes/ exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .map(|p| (p, Vec::new()))
+        .collect();
+    runs.sort();
+    for g in ["0.03", "0.015", "0.98", "0.1234567"] {
+        runs.push((dir.join("fog-cube.toml"), vec![format!("media.fog.g={g}")]));
+    }
+    for (f, sets) in &runs {
+        let loaded = brume::scene::load(f, sets).unwrap_or_else(|e| panic!("{e}"));
+        let sampling = Sampling {
+            gather_budget: 1 << 30,
+            machine_memory: 0,
+            version: "test".into(),
+        };
+        let id = FilmId::new(&loaded.desc, 5, sampling).expect("identity");
+        let film = Film::starting_at(2, 1, brume::spectrum::SpectralGrid::new(2, 400.0, 700.0), 0);
+        checkpoint::write(&part, &film, &id)
+            .unwrap_or_else(|e| panic!("{} {sets:?}: {e}", f.display()));
+        let back =
+            checkpoint::read(&part).unwrap_or_else(|e| panic!("{} {sets:?}: {e}", f.display()));
+        assert_eq!(back.id, id, "{} {sets:?}", f.display());
+    }
+}
