@@ -13,7 +13,7 @@ use std::time::Instant;
 use brume::integrator::gather::Gather;
 use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord};
 use brume::integrator::{Estimator, IntegratorDesc, Radii};
-use brume::medium::HomogeneousMedium;
+use brume::medium::Medium;
 use brume::spectrum::Spectrum;
 use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, criterion_main};
 use glam::Vec3;
@@ -70,10 +70,10 @@ fn records(n: usize, per_segment: usize, distinct: bool, seed: u64) -> Records {
     }
 }
 
-fn media() -> Vec<HomogeneousMedium> {
+fn media() -> Vec<Medium> {
     let s = Spectrum::splat(0.8, BINS);
     let a = Spectrum::splat(0.2, BINS);
-    vec![HomogeneousMedium::new(&s, &a, 0.5, BINS).expect("valid medium")]
+    vec![Medium::new(&s, &a, 0.5, BINS).expect("valid medium")]
 }
 
 fn build(n: usize, r: Records) -> Gather {

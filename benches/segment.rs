@@ -6,7 +6,7 @@ use brume::integrator::estimator::{
     CameraAxis, cylinder_eq2, cylinder_truncated, segment_cylinder, segment_sphere,
     track_length_density,
 };
-use brume::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use brume::medium::{ChannelPick, Medium, Mixture};
 use brume::spectrum::Spectrum;
 use criterion::{Criterion, Throughput, black_box, criterion_group, criterion_main};
 use glam::Vec3;
@@ -55,7 +55,7 @@ fn bench(c: &mut Criterion) {
     let st: Vec<f32> = (0..BINS).map(|l| 0.2 + 0.5 * l as f32).collect();
     let ss = Spectrum::from_slice(&st) * 0.7;
     let sa = Spectrum::from_slice(&st) * 0.3;
-    let m = HomogeneousMedium::new(&ss, &sa, 0.5, BINS).unwrap();
+    let m = Medium::new(&ss, &sa, 0.5, BINS).unwrap();
     let mix = Mixture::new(ChannelPick::Uniform, &Spectrum::ZERO, &m, 0.1);
     let r = 0.1f32;
     let mut g = c.benchmark_group("segment");

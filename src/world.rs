@@ -9,7 +9,7 @@ use crate::film::FilmExtras;
 use crate::geometry::{Geometry, Ray};
 use crate::light::LightSet;
 use crate::material::Material;
-use crate::medium::HomogeneousMedium;
+use crate::medium::Medium;
 use crate::spectrum::SpectralGrid;
 
 pub struct Scene {
@@ -17,7 +17,7 @@ pub struct Scene {
     pub camera: Camera,
     pub geometry: Geometry,
     pub materials: Vec<Material>,
-    pub media: Vec<HomogeneousMedium>,
+    pub media: Vec<Medium>,
     pub lights: LightSet,
     /// Medium around the camera (ray start).
     pub camera_medium: Option<u32>,

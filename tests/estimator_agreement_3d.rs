@@ -17,8 +17,7 @@ use brume::integrator::estimator::{
     track_length_density,
 };
 use brume::medium::{
-    ChannelPick, ForwardFlight, HomogeneousMedium, Mixture, MultiSphereWalk, WalkEnd,
-    sample_extinction,
+    ChannelPick, ForwardFlight, Medium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction,
 };
 use brume::spectrum::Spectrum;
 use glam::Vec3;
@@ -41,8 +40,7 @@ const THETA: f32 = std::f32::consts::FRAC_PI_3;
 fn spheres_cylinders_and_truncated_cylinders_agree_with_the_closed_form() {
     let ss: Vec<f32> = (0..N).map(|l| ST[l] * ALB[l]).collect();
     let sa: Vec<f32> = (0..N).map(|l| ST[l] * (1.0 - ALB[l])).collect();
-    let m = HomogeneousMedium::new(&Spectrum::from_slice(&ss), &Spectrum::from_slice(&sa), G, N)
-        .unwrap();
+    let m = Medium::new(&Spectrum::from_slice(&ss), &Spectrum::from_slice(&sa), G, N).unwrap();
     let u = Vec3::Z;
     let v = Vec3::new(THETA.sin(), 0.0, THETA.cos());
     let uv = u.dot(v);

@@ -11,9 +11,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::medium::{
-    ChannelPick, HomogeneousMedium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction,
-};
+use brume::medium::{ChannelPick, Medium, Mixture, MultiSphereWalk, WalkEnd, sample_extinction};
 use brume::spectrum::Spectrum;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -28,8 +26,8 @@ const L: f32 = 1.5;
 /// Radiance entering at the right end, travelling left.
 const I: [f64; N] = [1.0, 0.8, 1.2, 2.0];
 
-fn medium() -> HomogeneousMedium {
-    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
+fn medium() -> Medium {
+    Medium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
 }
 
 /// Light side, written independently of the library: analog transport in bin `l` of a particle

@@ -7,7 +7,7 @@ mod stats;
 use brume::integrator::estimator::{
     CylinderChord, cylinder_eq2, cylinder_eq2_fwd, cylinder_truncated, eq2_factor,
 };
-use brume::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use brume::medium::{ChannelPick, Medium, Mixture};
 use brume::spectrum::Spectrum;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -18,8 +18,8 @@ const N: usize = 4;
 const ST: [f32; N] = [0.05, 0.7, 3.0, 20.0];
 const ALB: [f32; N] = [0.9, 0.5, 0.8, 0.4];
 
-fn medium() -> HomogeneousMedium {
-    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
+fn medium() -> Medium {
+    Medium::from_extinction_albedo(&ST, &ALB, 0.0).unwrap()
 }
 
 fn chord(lam1: f32, c: f32, tau1: f32, uv: f32) -> CylinderChord {
@@ -164,7 +164,7 @@ fn gauss_legendre_variants_are_accurate() {
 #[test]
 fn grey_truncated_cylinder_is_the_chord_length() {
     let ss = Spectrum::splat(0.3, 3);
-    let g = HomogeneousMedium::new(&ss, &Spectrum::splat(0.2, 3), 0.0, 3).unwrap();
+    let g = Medium::new(&ss, &Spectrum::splat(0.2, 3), 0.0, 3).unwrap();
     let cam = Mixture::new(
         ChannelPick::Throughput,
         &Spectrum::from_slice(&[1.0, 5.0, 0.1]),

@@ -7,7 +7,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::medium::{FlightEnd, ForwardFlight, HomogeneousMedium};
+use brume::medium::{FlightEnd, ForwardFlight, Medium};
 use brume::spectrum::Spectrum;
 use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
@@ -23,8 +23,8 @@ const EDGES: [f32; 4] = [0.0, 0.05, 0.3, T];
 /// Gather points along the segment.
 const PROBES: [f32; 3] = [0.02, 0.25, 0.7];
 
-fn medium() -> HomogeneousMedium {
-    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.2).unwrap()
+fn medium() -> Medium {
+    Medium::from_extinction_albedo(&ST, &ALB, 0.2).unwrap()
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use brume::integrator::estimator::{CameraAxis, Estimator, segment_cylinder, segment_sphere};
 use brume::integrator::record::{CLASS_ALL, SegmentRecord, VolumeRecord};
 use brume::integrator::{IntegratorDesc, VolumeKind};
-use brume::medium::HomogeneousMedium;
+use brume::medium::Medium;
 use brume::spectrum::Spectrum;
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
@@ -123,7 +123,7 @@ fn cylinder_chords_match_brute_force() {
 /// `s` metres (cylinders), including its rims.
 #[test]
 fn estimator_bounds_contain_their_volumes() {
-    let medium = HomogeneousMedium::new(&Spectrum::splat(1.0, 1), &Spectrum::ZERO, 0.0, 1).unwrap();
+    let medium = Medium::new(&Spectrum::splat(1.0, 1), &Spectrum::ZERO, 0.0, 1).unwrap();
     let mut desc = IntegratorDesc::default();
     let mut rng = Pcg64Mcg::seed_from_u64(702);
     for kind in [

@@ -3,7 +3,7 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::medium::{ChannelPick, HomogeneousMedium, MediumError, power_law};
+use brume::medium::{ChannelPick, Medium, MediumError, power_law};
 use brume::spectrum::{SpectralGrid, Spectrum};
 use stats::simpson;
 
@@ -11,13 +11,13 @@ use stats::simpson;
 fn validates_and_derives_sigma_t() {
     let ss = Spectrum::from_slice(&[0.5, 1.0, 2.0, 99.0]);
     let sa = Spectrum::from_slice(&[0.1, 0.0, 1.0, 99.0]);
-    let m = HomogeneousMedium::new(&ss, &sa, 0.3, 3).unwrap();
+    let m = Medium::new(&ss, &sa, 0.3, 3).unwrap();
     assert_eq!(m.sigma_t.as_slice(4), &[0.6, 1.0, 3.0, 0.0]);
     assert!((m.albedo()[0] - 0.5 / 0.6).abs() < 1e-6);
     assert_eq!(m.g(), 0.3);
     let bad = Spectrum::from_slice(&[0.5, -1.0]);
     assert!(matches!(
-        HomogeneousMedium::new(&bad, &sa, 0.0, 2),
+        Medium::new(&bad, &sa, 0.0, 2),
         Err(MediumError::Coefficient {
             what: "sigma_s",
             bin: 1,
@@ -25,10 +25,10 @@ fn validates_and_derives_sigma_t() {
         })
     ));
     let nan = Spectrum::from_slice(&[f32::NAN]);
-    assert!(HomogeneousMedium::new(&ss, &nan, 0.0, 1).is_err());
-    assert!(HomogeneousMedium::new(&ss, &sa, 1.0, 2).is_err());
-    assert!(HomogeneousMedium::new(&ss, &sa, 0.0, 0).is_err());
-    assert!(HomogeneousMedium::new(&ss, &sa, 0.0, 65).is_err());
+    assert!(Medium::new(&ss, &nan, 0.0, 1).is_err());
+    assert!(Medium::new(&ss, &sa, 1.0, 2).is_err());
+    assert!(Medium::new(&ss, &sa, 0.0, 0).is_err());
+    assert!(Medium::new(&ss, &sa, 0.0, 65).is_err());
 }
 
 #[test]

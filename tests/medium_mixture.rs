@@ -4,15 +4,15 @@
 #[path = "estimator_stats.rs"]
 mod stats;
 
-use brume::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use brume::medium::{ChannelPick, Medium, Mixture};
 use brume::spectrum::Spectrum;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-fn medium() -> HomogeneousMedium {
+fn medium() -> Medium {
     let st = [0.05f32, 0.8, 4.0, 30.0];
     let a = [0.9f32, 0.5, 0.99, 0.2];
-    HomogeneousMedium::from_extinction_albedo(&st, &a, 0.3).unwrap()
+    Medium::from_extinction_albedo(&st, &a, 0.3).unwrap()
 }
 
 #[test]
@@ -113,7 +113,7 @@ fn scaled_evaluation_stays_finite_where_exponentials_underflow() {
     assert!(e.pdf > 0.0 && e.tmix > 0.0);
     // Infinite distance: bins without extinction are the only survivors.
     let ss = Spectrum::from_slice(&[0.0, 1.0]);
-    let vac = HomogeneousMedium::new(&ss, &Spectrum::ZERO, 0.0, 2).unwrap();
+    let vac = Medium::new(&ss, &Spectrum::ZERO, 0.0, 2).unwrap();
     let mix = Mixture::new(ChannelPick::Uniform, &Spectrum::ZERO, &vac, 0.1);
     let w = mix.survival_weight(f32::INFINITY);
     assert_eq!((w[0], w[1]), (2.0, 0.0));

@@ -10,6 +10,10 @@ pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     let s = brume::scene::summary::summarise(&scene);
     print!("{s}");
     let (built, warnings) = brume::scene::build_with_warnings(&scene)?;
+    let names: Vec<&str> = scene.desc.media.keys().map(String::as_str).collect();
+    for line in brume::scene::density_report::density_report(&built, &names) {
+        println!("{line}");
+    }
     // The radius "auto" resolves to, and any radius in pixel footprints (the unit the
     // auto rule and the studies of docs/performance.md use).
     let footprint = brume::integrator::radius::pixel_footprint(&built.camera, &built.geometry);

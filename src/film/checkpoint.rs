@@ -132,26 +132,20 @@ pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError>
         w.inner.write_all(&sum.to_le_bytes())?;
         w.inner.flush()?;
         drop(w);
-        verify_identity(tmp, id)
+        // The identity read back before the file replaces anything: one that does not survive
+        // its JSON text (a float one ulp off) would be refused by resume and merge.
+        match read_header(tmp) {
+            Ok(h) if h.id == *id => Ok(()),
+            Ok(_) => Err(std::io::Error::other(
+                "the film's identity does not read back",
+            )),
+            Err(e) => Err(std::io::Error::other(e)),
+        }
     })
     .map_err(|source| FilmFileError::Io {
         path: path.to_path_buf(),
         source,
     })
-}
-
-/// Reads the identity of the file just written back and compares it with the one meant: a
-/// description that does not survive its JSON text (a float parsed back one ulp off) would make
-/// the file unreadable by resume and merge, so it is refused here, before it replaces anything,
-/// instead of after the render.
-fn verify_identity(tmp: &Path, id: &FilmId) -> std::io::Result<()> {
-    let back = read_header(tmp).map_err(std::io::Error::other)?;
-    if back.id != *id {
-        return Err(std::io::Error::other(
-            "the film's identity does not read back as written (please report this)",
-        ));
-    }
-    Ok(())
 }
 
 fn encode(

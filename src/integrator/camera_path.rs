@@ -19,7 +19,7 @@ use super::settings::GatherMode;
 use super::{Integrator, Radii};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{Mixture, WalkEnd, sample_extinction, sample_scatter};
+use crate::medium::{Along, Mixture, WalkEnd, sample_extinction, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -127,12 +127,16 @@ impl<'a> CameraPath<'a> {
     /// Leaves the estimator's volumes on the segment along `ray` in medium `m`. The segment is
     /// recorded with its first volume, so that one that leaves none (transmitted before the
     /// first sub-step of a sphere walk) costs nothing.
+    /// `depth` is the segment's length in optical depth at density 1 (`along.depth(len)`, the
+    /// length itself in a uniform medium): the estimator walks in it, and each volume is
+    /// recorded at its distance along the ray.
+    #[allow(clippy::too_many_arguments)]
     fn leave_volumes<E: VolumeEstimator>(
         &mut self,
         e: &E,
         m: u32,
         ray: &Ray,
-        len: f32,
+        (depth, len, along): (f32, f32, &Along),
         mix: &Mixture,
         rng: &mut Rng,
     ) -> WalkEnd {
@@ -147,7 +151,7 @@ impl<'a> CameraPath<'a> {
             dir: ray.d,
             radius: self.radii.bound(),
             mix,
-            len,
+            len: depth,
             first_extinction: self.first_extinction(),
         };
         let (out, pixel, w, n) = (&mut *self.out, self.pixel, &self.w, self.n);
@@ -165,8 +169,10 @@ impl<'a> CameraPath<'a> {
                 });
                 out.segments.len() as u32 - 1
             });
+            let s = along.distance(s).min(len);
             out.volumes.push(VolumeRecord { segment, s, scale });
         })
+        .at_distance(along, len)
     }
 
     /// `integrator.expected_transmission`: whatever the walk's outcome, the path goes on past
@@ -174,10 +180,10 @@ impl<'a> CameraPath<'a> {
     /// weight `e^{-st_l len} / Tmix(len)` comes with probability `Tmix(len)`, so this is its
     /// expectation: the part behind the segment keeps its mean per bin and loses the coin's
     /// variance, while the segment's volumes (left before the outcome) are unchanged.
-    fn expected_transmission(&mut self, m: u32, len: f32) -> MediumStep {
+    fn expected_transmission(&mut self, m: u32, depth: f32) -> MediumStep {
         let tr = self.scene.media[m as usize]
             .sigma_t
-            .transmittance(len, self.n);
+            .transmittance(depth, self.n);
         if tr.is_zero() {
             return MediumStep::Ended;
         }
@@ -209,9 +215,14 @@ impl PathStep for CameraPath<'_> {
     /// One straight camera segment of length `len` inside medium `m` (method notes 2-5).
     fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
         let mix = self.mixture(m);
+        let scene = self.scene;
+        let med = &scene.media[m as usize];
+        // Walks and flights run in optical depth at density 1 (uniform media: the distance).
+        let along = med.density.along(ray.o, ray.d);
+        let depth = along.depth(len);
         if !self.gathering {
             // Free flight without gathering: the continuation of a see-through path (note 4).
-            let end = sample_extinction(&self.scene.media[m as usize], &mix, len, rng);
+            let end = sample_extinction(med, &mix, depth, rng).at_distance(&along, len);
             return self.after_walk(end);
         }
         if !self.first_extinction() {
@@ -226,20 +237,27 @@ impl PathStep for CameraPath<'_> {
                 ray,
                 len,
                 mix: &mix,
+                along: &along,
             };
             let mut acc = ByLight::new(self.nee.layers);
             direct.medium_segment(self.scene, &seg, rng, &mut acc);
             add(&mut self.nee.medium, self.nee.layers, &acc, &self.w, 1.0);
         }
         let end = match &integrator.estimator {
-            Estimator::Spheres(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
-            Estimator::Cylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
-            Estimator::TruncatedCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
-            Estimator::LongCylinder(e) => self.leave_volumes(e, m, ray, len, &mix, rng),
+            Estimator::Spheres(e) => self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng),
+            Estimator::Cylinder(e) => {
+                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+            }
+            Estimator::TruncatedCylinder(e) => {
+                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+            }
+            Estimator::LongCylinder(e) => {
+                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+            }
         };
         // An endless segment (a medium without a boundary ahead) keeps the walk's outcome.
         if integrator.settings.expected_transmission && self.first_extinction() && len.is_finite() {
-            return self.expected_transmission(m, len);
+            return self.expected_transmission(m, depth);
         }
         self.after_walk(end)
     }

@@ -33,7 +33,7 @@ use glam::Vec3;
 
 use crate::film::{ChunkSplats, Layer};
 use crate::geometry::{Hit, Ray, spawn};
-use crate::medium::ForwardFlight;
+use crate::medium::{Along, ForwardFlight};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -87,11 +87,12 @@ pub fn connect(
 pub fn connect_medium(
     scene: &Scene,
     (m, ray): (u32, &Ray),
-    flight: &ForwardFlight,
+    (flight, along): (&ForwardFlight, &Along),
     flux: &Spectrum,
     u: f32,
 ) -> Option<(u32, Spectrum)> {
-    let e = flight.end();
+    // The flight ran in optical depth at density 1; the point is drawn on its distance.
+    let e = along.distance(flight.end());
     if !(e > 0.0 && e.is_finite()) {
         return None;
     }
@@ -105,7 +106,7 @@ pub fn connect_medium(
     let tau = shadow::optical_depth(scene, Some(m), to_camera, pr.dist)?;
     let t = shadow::transmittance(&tau, scene.grid.n);
     let med = &scene.media[m as usize];
-    let j = flight.flux_at(flux, s) * med.sigma_s * (e * pr.importance);
+    let j = flight.flux_at(flux, along.depth(s)) * med.sigma_s * (e * pr.importance * along.rho(s));
     Some((pr.pixel, times_phase(j * t, med, ray.d.dot(pr.to_camera))))
 }
 

@@ -21,7 +21,7 @@ use super::target::Target;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{ChannelPick, FlightEnd, ForwardFlight, sample_scatter};
+use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -349,6 +349,9 @@ impl ForwardTracer<'_> {
             len,
             flux: &self.flux,
             flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
+            along: m.map_or(Along::Identity, |m| {
+                scene.media[m as usize].density.along(ray.o, ray.d)
+            }),
         };
         let mut hits = 0u64;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
@@ -372,13 +375,13 @@ impl ForwardTracer<'_> {
 
     /// Adds the flux of the forward segment `ray` up to `len` (a flight's flux where it crosses)
     /// to the sensors whose discs it crosses (`SensorGather::crossings`).
-    fn cross_discs(&mut self, ray: &Ray, len: f32, flight: Option<&ForwardFlight>) {
+    fn cross_discs(&mut self, ray: &Ray, len: f32, flight: Option<(&ForwardFlight, &Along)>) {
         let Some(s) = self.sensors else { return };
         let n = self.scene.grid.n;
-        let flight = flight.filter(|f| f.mixture().sigma_t_span() > 0.0);
+        let flight = flight.filter(|(f, _)| f.mixture().sigma_t_span() > 0.0);
         let (buf, flux) = (&mut *self.buf, &self.flux);
         s.crossings(ray.o, ray.d, len, |k, t| {
-            let at = flight.map_or(*flux, |f| f.flux_at(flux, t));
+            let at = flight.map_or(*flux, |(f, along)| f.flux_at(flux, along.depth(t)));
             buf.splat_sensor(k as usize, &at.0[..n], s.disc_scale);
         });
     }
@@ -388,31 +391,40 @@ impl PathStep for ForwardTracer<'_> {
     fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
         let med = &self.scene.media[m as usize];
         let floor = self.integrator.settings.channel_floor;
-        let flight = ForwardFlight::sample(med, &self.flux, floor, len, rng);
+        // The flight runs in optical depth at density 1 (the distance in a uniform medium) and
+        // ends at that depth's distance.
+        let along = med.density.along(ray.o, ray.d);
+        let flight = ForwardFlight::sample(med, &self.flux, floor, along.depth(len), rng);
+        let end = along.distance(flight.end()).min(len);
         // Paper eq. 3 integrates the forward attenuation deterministically: it needs the whole
         // segment, not the sampled flight.
         let reach = if self.integrator.estimator.whole_forward_segment() {
             len
         } else {
-            flight.end()
+            end
         };
         if self.deposits {
             self.gather_volumes(Some(m), ray, reach, Some(&flight));
             let scene = self.scene;
             if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain)
-                && let Some(v) =
-                    camera_splat::connect_medium(scene, (m, ray), &flight, &self.flux, rng.random())
+                && let Some(v) = camera_splat::connect_medium(
+                    scene,
+                    (m, ray),
+                    (&flight, &along),
+                    &self.flux,
+                    rng.random(),
+                )
             {
                 camera_splat::put(self.buf, Layer::Medium, v, self.light, scene.grid.n, norm);
             }
         }
         if self.to_discs {
-            self.cross_discs(ray, flight.end(), Some(&flight));
+            self.cross_discs(ray, end, Some((&flight, &along)));
         }
         match flight.finish(med, &mut self.flux) {
             FlightEnd::Escaped => MediumStep::Reached,
             FlightEnd::Killed { .. } => MediumStep::Ended,
-            FlightEnd::Scattered { t } => MediumStep::Scattered(t),
+            FlightEnd::Scattered { .. } => MediumStep::Scattered(end),
         }
     }
 

@@ -121,7 +121,7 @@ impl Integrator {
     pub fn apply(
         &mut self,
         c: &auto::PassConfig,
-        media: &[crate::medium::HomogeneousMedium],
+        media: &[crate::medium::Medium],
     ) -> Result<(), MediumError> {
         if c.q != self.q {
             self.estimator = Estimator::from_desc(&self.settings, &c.q, media)?;

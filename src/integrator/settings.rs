@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::setting::Setting;
-use crate::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use crate::medium::{ChannelPick, Medium, Mixture};
 use crate::spectrum::Spectrum;
 
 /// The integration volume camera paths leave in media (`integrator.volume`); each is an
@@ -236,7 +236,7 @@ pub struct Channels {
 
 impl Channels {
     /// The mixture of a camera segment with throughput `w` in `medium`.
-    pub fn mixture(&self, w: &Spectrum, medium: &HomogeneousMedium) -> Mixture {
+    pub fn mixture(&self, w: &Spectrum, medium: &Medium) -> Mixture {
         Mixture::new(self.pick, w, medium, self.floor)
     }
 }

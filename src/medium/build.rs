@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use super::droplets::{self, DropletOptics, DropletsDesc};
-use super::{HomogeneousMedium, MediumError, Phase, PhaseDesc};
+use super::{Medium, MediumError, Phase, PhaseDesc};
 use crate::spectrum::{SpectralGrid, Spectrum};
 
 /// A medium description's parts: `sigma_s`/`sigma_a` resolved to bins, and its phase keys.
@@ -50,7 +50,7 @@ pub struct CoefficientKeys {
 /// A built medium and, for droplet fog, the Lorenz–Mie results it came from.
 #[derive(Clone, Debug)]
 pub struct BuiltMedium {
-    pub medium: HomogeneousMedium,
+    pub medium: Medium,
     pub droplets: Option<DropletOptics>,
 }
 
@@ -194,7 +194,7 @@ pub fn build(
             sa.0[l] += *v as f32;
         }
         let phase = Phase::Tabulated(super::phase_intern(o.table.clone()));
-        let medium = HomogeneousMedium::with_phase(&Spectrum::from_slice(&ss), &sa, phase, n)
+        let medium = Medium::with_phase(&Spectrum::from_slice(&ss), &sa, phase, n)
             .map_err(keyed("droplets"))?;
         return Ok(BuiltMedium {
             medium,
@@ -224,7 +224,7 @@ pub fn build(
         }
         None => (*parts.sigma_s.unwrap_or(&zero), *parts.sigma_a),
     };
-    let medium = HomogeneousMedium::with_phase(&ss, &sa, phase, n).map_err(|e| {
+    let medium = Medium::with_phase(&ss, &sa, phase, n).map_err(|e| {
         let key = match e {
             MediumError::Coefficient { what, .. } => what,
             MediumError::PhaseG(_)

@@ -1,4 +1,4 @@
-use super::{ChannelPick, HomogeneousMedium, Mixture};
+use super::{ChannelPick, Medium, Mixture};
 use crate::spectrum::Spectrum;
 use rand::Rng;
 
@@ -39,7 +39,7 @@ impl ForwardFlight {
     /// `seg_len` (`+inf` allowed).
     #[inline]
     pub fn sample<R: Rng + ?Sized>(
-        medium: &HomogeneousMedium,
+        medium: &Medium,
         flux: &Spectrum,
         floor: f32,
         seg_len: f32,
@@ -75,7 +75,7 @@ impl ForwardFlight {
     /// Applies the end-of-flight update to `flux`. Russian roulette is the caller's (the
     /// forward path's rule, after the event).
     #[inline]
-    pub fn finish(&self, medium: &HomogeneousMedium, flux: &mut Spectrum) -> FlightEnd {
+    pub fn finish(&self, medium: &Medium, flux: &mut Spectrum) -> FlightEnd {
         if self.escapes() {
             *flux *= self.mix.survival_weight(self.seg_len);
             return FlightEnd::Escaped;

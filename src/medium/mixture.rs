@@ -1,4 +1,4 @@
-use super::HomogeneousMedium;
+use super::Medium;
 use crate::spectrum::Spectrum;
 
 /// How the stepping bin `l0` of a segment is chosen (scene option `channel_pick`:
@@ -51,7 +51,7 @@ pub struct MixEval {
 /// [`MixEval::tr`], so that `e^{-x_l s}` recomputes a sphere's scaled per-bin attenuation
 /// from its distance alone (see [`MultiSphereWalk::walk_scaled`](super::MultiSphereWalk::walk_scaled);
 /// the gather uses a fast exp, equal to the walk's within 3e-7 relative, not bit for bit).
-pub fn relative_extinction(medium: &HomogeneousMedium) -> Spectrum {
+pub fn relative_extinction(medium: &Medium) -> Spectrum {
     let n = medium.n;
     let st = &medium.sigma_t;
     let st_min = st.0[..n].iter().copied().fold(f32::INFINITY, f32::min);
@@ -101,7 +101,7 @@ pub fn channel_probabilities(pick: ChannelPick, w: &Spectrum, n: usize, floor: f
 
 impl Mixture {
     /// Builds the mixture of `medium` with the probabilities of [`channel_probabilities`].
-    pub fn new(pick: ChannelPick, w: &Spectrum, medium: &HomogeneousMedium, floor: f32) -> Self {
+    pub fn new(pick: ChannelPick, w: &Spectrum, medium: &Medium, floor: f32) -> Self {
         let n = medium.n;
         let p = channel_probabilities(pick, w, n, floor);
         let st = medium.sigma_t;
@@ -204,7 +204,7 @@ impl Mixture {
 /// `p_l / p_mix` that keep every bin unbiased (`Phase::sample_bins`).
 #[inline]
 pub fn sample_scatter<R: rand::Rng + ?Sized>(
-    medium: &HomogeneousMedium,
+    medium: &Medium,
     w: glam::Vec3,
     weights: &Spectrum,
     pick: ChannelPick,

@@ -6,10 +6,11 @@
 //! can call it from its per-ray loops.
 
 mod build;
+mod coefficients;
+pub mod density;
 pub mod droplets;
 mod error;
 mod forward;
-mod homogeneous;
 mod mixture;
 mod phase;
 mod spectral;
@@ -19,9 +20,10 @@ pub use build::{
     BuiltMedium, CoefficientKeys, KeyedError, MediumParts, Visibility, build as build_medium,
     check as check_medium,
 };
+pub use coefficients::Medium;
+pub use density::{Along, Density, DensityDesc};
 pub use error::MediumError;
 pub use forward::{FlightEnd, ForwardFlight};
-pub use homogeneous::HomogeneousMedium;
 pub use mixture::{
     ChannelPick, DEFAULT_FLOOR, MIN_FLOOR, MixEval, Mixture, channel_probabilities,
     relative_extinction, sample_scatter,

@@ -9,7 +9,7 @@ use super::desc::MediumDesc;
 use super::error::{KeyText, Origin, SceneError};
 use super::source::Source;
 use super::spectra::SpectrumResolver;
-use crate::medium::{BuiltMedium, HomogeneousMedium, MediumError, MediumParts};
+use crate::medium::{BuiltMedium, Medium, MediumError, MediumParts};
 use crate::spectrum::SpectralGrid;
 
 /// Builds medium `name` of `desc`.
@@ -34,7 +34,7 @@ pub fn build_medium(
         droplets: desc.droplets.as_ref(),
         visibility: desc.grey_visibility(),
     };
-    crate::medium::build_medium(parts, grid, &|f| source.resolve(f)).map_err(|e| {
+    let built = crate::medium::build_medium(parts, grid, &|f| source.resolve(f)).map_err(|e| {
         let k = format!("{key}.{}", e.key);
         match e.error {
             MediumError::PhaseFile {
@@ -51,6 +51,10 @@ pub fn build_medium(
             },
             other => source.invalid(&k, other.to_string()),
         }
+    })?;
+    Ok(BuiltMedium {
+        medium: built.medium.with_density(desc.density()),
+        ..built
     })
 }
 
@@ -60,7 +64,7 @@ pub fn build_all(
     spectra: &SpectrumResolver,
     grid: &SpectralGrid,
     media: &BTreeMap<String, MediumDesc>,
-) -> Result<Vec<HomogeneousMedium>, SceneError> {
+) -> Result<Vec<Medium>, SceneError> {
     media
         .iter()
         .map(|(name, desc)| Ok(build_medium(source, spectra, grid, name, desc)?.medium))

@@ -10,6 +10,7 @@ mod build;
 mod builder;
 mod camera;
 mod check;
+pub mod density_report;
 pub mod desc;
 mod error;
 mod lights;

@@ -6,6 +6,7 @@ use super::check::{Checker, Names, Problem};
 use super::desc::{FilmDesc, SceneDesc};
 use super::loaded::LoadedScene;
 use crate::film::output::Exposure;
+use crate::integrator::VolumeKind;
 use crate::spectrum::MAX_BINS;
 
 pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
@@ -113,6 +114,19 @@ fn media(c: &mut Checker, d: &SceneDesc) {
                 format!("{key}.{k}")
             };
             c.fail(at, message);
+        }
+        if m.density.is_some() && d.integrator.volume != VolumeKind::Spheres {
+            // The cylinders' gather weights integrate the camera's transmittance along the
+            // axis in closed form for a uniform medium only; spheres, NEE and forward rays
+            // use the density's change of variable (medium::density).
+            c.fail(
+                "integrator.volume",
+                format!(
+                    "{key}.density: a medium with a density field renders with \
+                     `volume = \"spheres\"` only (cylinders are not yet derived for \
+                     non-uniform media)"
+                ),
+            );
         }
     }
     if let Some(m) = &d.medium {

@@ -20,7 +20,7 @@ use crate::geometry::Ray;
 use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
 use crate::light::Anchor;
-use crate::medium::Mixture;
+use crate::medium::{Along, Mixture};
 use crate::world::Scene;
 
 /// One camera segment, as next-event estimation sees it.
@@ -31,13 +31,16 @@ pub struct Segment<'a> {
     /// The segment's channel mixture: its probabilities average the extinction the densities
     /// are built from.
     pub mix: &'a Mixture,
+    /// The segment's change of variable to optical depth at density 1 (`medium::density`).
+    pub along: &'a Along,
 }
 
 impl Direct {
     /// Adds the single-scattering estimate of `seg` (per bin, without the camera throughput)
     /// to `acc`, each sample to the light it sampled.
     pub fn medium_segment(&self, scene: &Scene, seg: &Segment, rng: &mut Rng, acc: &mut ByLight) {
-        if !(seg.len > 0.0 && seg.len.is_finite()) {
+        // A segment the density leaves empty (above a fog bank) scatters nothing.
+        if !(seg.len > 0.0 && seg.len.is_finite() && seg.along.depth(seg.len) > 0.0) {
             return;
         }
         let med = &scene.media[seg.medium as usize];
@@ -66,8 +69,11 @@ impl Direct {
                     let e = &parallel.as_ref().expect("just set").1;
                     let stratum = (i + shift) % self.samples;
                     let u_bin = (stratum as f32 + rng.random::<f32>()) * inv_samples;
-                    let t = e.sample(u_bin, u);
-                    (t, e.pdf(t))
+                    // Sampled in optical depth at density 1, placed at its distance: the
+                    // density in t is the one in depth times rho(t).
+                    let depth = e.sample(u_bin, u);
+                    let t = seg.along.distance(depth).min(seg.len);
+                    (t, e.pdf(depth) * seg.along.rho(t))
                 }
                 Anchor::Point { position, cone } => {
                     let (a, b) = match cone {
@@ -95,8 +101,8 @@ impl Direct {
             };
             // Light travelling along -wi turns towards the camera (-d): cos = wi . d.
             let cos = arrival.wi.dot(d);
-            let camera = med.sigma_t.transmittance(t, n);
-            let value = camera * med.sigma_s * arrival.li * tr;
+            let camera = med.sigma_t.transmittance(seg.along.depth(t), n);
+            let value = camera * med.sigma_s * arrival.li * tr * seg.along.rho(t);
             let sample = if med.phase.varies_per_bin() {
                 value * med.phase_bins(cos) * (inv_samples / (pdf * prob))
             } else {
@@ -116,16 +122,19 @@ fn equiangular(o: Vec3, d: Vec3, c: Vec3, a: f32, b: f32, u: f32) -> (f32, f32) 
     (t, e.pdf(t))
 }
 
-/// The density that follows `e^{-st_l t} e^{-tau_l(t)}` for a parallel light along
-/// `direction`, per bin mixed by the segment's channel probabilities: rate `st_l` plus the slope
-/// of the light's optical depth `tau_l` between two probes near the segment's ends. Falls back
-/// to the camera's rates alone where a probe is blocked (the segment is then partly shadowed;
-/// any density stays unbiased).
+/// The density, over the segment's optical depth at density 1 `u in [0, D(len)]` (the
+/// distance itself in a uniform medium), that follows `e^{-st_l u} e^{-tau_l(u)}` for a parallel
+/// light along `direction`, per bin mixed by the segment's channel probabilities: rate `st_l`
+/// plus the slope of the light's optical depth `tau_l` between two probes near the segment's
+/// ends. Falls back to the camera's rates alone where a probe is blocked (the segment is then
+/// partly shadowed; any density stays unbiased).
 fn parallel_density(scene: &Scene, seg: &Segment, direction: Vec3) -> ExpMixture {
     let med = &scene.media[seg.medium as usize];
     let n = scene.grid.n;
-    let (t0, t1) = (0.001 * seg.len, 0.999 * seg.len);
-    let depth = |t: f32| {
+    let end = seg.along.depth(seg.len);
+    let (u0, u1) = (0.001 * end, 0.999 * end);
+    let depth = |u: f32| {
+        let t = seg.along.distance(u).min(seg.len);
         let ray = Ray {
             o: seg.ray.o + seg.ray.d * t,
             d: -direction,
@@ -133,8 +142,8 @@ fn parallel_density(scene: &Scene, seg: &Segment, direction: Vec3) -> ExpMixture
         optical_depth(scene, Some(seg.medium), ray, f32::INFINITY)
     };
     let mut rates = med.sigma_t;
-    if let (Some(a), Some(b)) = (depth(t0), depth(t1)) {
-        rates += (b - a) * (1.0 / (t1 - t0));
+    if let (Some(a), Some(b)) = (depth(u0), depth(u1)) {
+        rates += (b - a) * (1.0 / (u1 - u0));
     }
-    ExpMixture::new(&rates, seg.mix.probabilities(), n, seg.len)
+    ExpMixture::new(&rates, seg.mix.probabilities(), n, end)
 }

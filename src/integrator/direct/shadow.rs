@@ -1,5 +1,6 @@
 //! Shadow rays of next-event estimation: the per-bin transmittance between a point and a light
-//! through index-matched (null) boundaries and the homogeneous media between them. Any surface
+//! through index-matched (null) boundaries and the media between them (their density's optical
+//! depth in closed form, `medium::density`). Any surface
 //! with a material blocks: light that arrives through a reflection or refraction is not direct
 //! (method note 9) and stays with the forward rays.
 
@@ -39,7 +40,8 @@ pub fn optical_depth(
             None => scene.world_exit(&ray),
         };
         if let Some(m) = medium {
-            tau += scene.media[m as usize].sigma_t * len;
+            let med = &scene.media[m as usize];
+            tau += med.sigma_t * med.density.along(ray.o, ray.d).depth(len);
         }
         let Some(h) = hit else { return Some(tau) };
         if scene.geometry.shape(h.shape).material.is_some() {

@@ -14,7 +14,7 @@ use super::{
     times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
-use crate::medium::{HomogeneousMedium, Mixture, WalkEnd, sample_extinction};
+use crate::medium::{Medium, Mixture, WalkEnd, sample_extinction};
 use crate::spectrum::Spectrum;
 
 /// Paper eq. 2: deterministic camera transmittance over the whole segment.
@@ -46,7 +46,7 @@ impl VolumeEstimator for Cylinder {
         seg: &SegmentRecord,
         v: &VolumeRecord,
         _w: &[f32],
-        med: &HomogeneousMedium,
+        med: &Medium,
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
@@ -257,7 +257,7 @@ pub fn eq2_factor(st: f32, chord: &CylinderChord) -> f32 {
 /// Exact when the forward flux is constant along the chord (monochrome forward flights, or flux
 /// that does not depend on position); see `cylinder_eq2_fwd` for colour forward flights.
 #[inline]
-pub fn cylinder_eq2(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -> Spectrum {
+pub fn cylinder_eq2(medium: &Medium, chord: &CylinderChord, r: f32) -> Spectrum {
     let k = 1.0 / (PI * r * r);
     if medium.grey {
         return medium.sigma_s * (k * eq2_factor(medium.sigma_t.0[0], chord));
@@ -274,12 +274,7 @@ pub fn cylinder_eq2(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -
 /// closed form of `cylinder_eq2` assumes constant flux along the chord and is biased by
 /// O(chord x sigma_t spread) here. Composite Gauss–Legendre.
 #[inline]
-pub fn cylinder_eq2_fwd(
-    medium: &HomogeneousMedium,
-    fwd: &Mixture,
-    chord: &CylinderChord,
-    r: f32,
-) -> Spectrum {
+pub fn cylinder_eq2_fwd(medium: &Medium, fwd: &Mixture, chord: &CylinderChord, r: f32) -> Spectrum {
     if fwd.sigma_t_span() == 0.0 {
         // Grey forward flight: its flux is constant along the chord, eq. 2's closed form is exact.
         return cylinder_eq2(medium, chord, r);

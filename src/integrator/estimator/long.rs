@@ -15,7 +15,7 @@ use super::{
     times_phase,
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
-use crate::medium::{HomogeneousMedium, WalkEnd};
+use crate::medium::{Medium, WalkEnd};
 use crate::spectrum::Spectrum;
 
 /// Paper eq. 3 (exact form).
@@ -47,7 +47,7 @@ impl VolumeEstimator for LongCylinder {
         seg: &SegmentRecord,
         v: &VolumeRecord,
         _w: &[f32],
-        med: &HomogeneousMedium,
+        med: &Medium,
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
@@ -60,7 +60,7 @@ impl VolumeEstimator for LongCylinder {
 /// lam)} dlam`: `e^{-st (tau1 + lam1)} chord (1 - e^{-x}) / x` with `x = st chord (1 + u.v)`
 /// (signed `u.v`). Equals eq. 3 for `u.v >= 0`, and stays finite for a forward ray travelling
 /// straight at the camera (`u.v = -1`, where `tau + lam` is constant).
-pub fn long_eq3_exact(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -> Spectrum {
+pub fn long_eq3_exact(medium: &Medium, chord: &CylinderChord, r: f32) -> Spectrum {
     let c = chord.len();
     let k = 1.0 / (PI * r * r);
     let mut out = Spectrum::ZERO;
@@ -94,7 +94,7 @@ mod tests {
 
     #[test]
     fn eq3_against_eq2_with_sampled_forward_extinction() {
-        let m = HomogeneousMedium::new(
+        let m = Medium::new(
             &Spectrum::splat(1.0, 1),
             &Spectrum::splat(ST - 1.0, 1),
             0.0,
@@ -156,7 +156,7 @@ mod tests {
     /// ray moves away from the camera (`u.v >= 0`); for `u.v < 0` the right denominator is
     /// `1 - |u.v|`, see [`long_eq3_exact`]. (Pairing point 1 with the forward entry instead does not
     /// save it: the sign is then right but the value is off by `(1 - |u.v|)/(1 + |u.v|)`.)
-    pub fn long_eq3_paper(medium: &HomogeneousMedium, chord: &CylinderChord, r: f32) -> Spectrum {
+    pub fn long_eq3_paper(medium: &Medium, chord: &CylinderChord, r: f32) -> Spectrum {
         let (ta, la, tb, lb) = if chord.tau1 <= chord.tau2 {
             (chord.tau1, chord.lam1, chord.tau2, chord.lam2)
         } else {

@@ -30,7 +30,7 @@ use rand::Rng;
 
 use super::record::{SegmentRecord, VolumeRecord};
 use super::settings::{IntegratorDesc, VolumeKind};
-use crate::medium::{ForwardFlight, HomogeneousMedium, MediumError, Mixture, WalkEnd};
+use crate::medium::{Along, ForwardFlight, Medium, MediumError, Mixture, WalkEnd};
 use crate::spectrum::Spectrum;
 
 pub use cylinder::{
@@ -46,7 +46,7 @@ pub use truncated::{TruncatedCylinder, cylinder_truncated};
 
 /// One camera segment in a medium, as the camera side of an estimator sees it.
 pub struct CameraSegment<'a> {
-    pub medium: &'a HomogeneousMedium,
+    pub medium: &'a Medium,
     /// The medium's index in the scene.
     pub medium_id: u32,
     /// The segment's unit direction (camera -> scene).
@@ -72,6 +72,19 @@ pub struct ForwardSegment<'a> {
     /// The flight when the flux changes along the segment (a colour flight in a chromatic
     /// medium); None for grey flights and outside media, where the flux is constant.
     pub flight: Option<&'a ForwardFlight>,
+    /// The change of variable of the flight's medium along the segment (the flight samples
+    /// in optical depth at density 1).
+    pub along: Along,
+}
+
+impl ForwardSegment<'_> {
+    /// The flux at distance `lam` along the segment.
+    #[inline]
+    pub fn flux_at(&self, lam: f32) -> Spectrum {
+        self.flight.map_or(*self.flux, |fl| {
+            fl.flux_at(self.flux, self.along.depth(lam))
+        })
+    }
 }
 
 /// The three pieces every integration volume provides.
@@ -102,7 +115,7 @@ pub trait VolumeEstimator {
         seg: &SegmentRecord,
         v: &VolumeRecord,
         w: &[f32],
-        med: &HomogeneousMedium,
+        med: &Medium,
         radius: f32,
     ) -> Option<Spectrum>;
 }
@@ -122,7 +135,7 @@ impl Estimator {
     pub fn from_desc(
         desc: &IntegratorDesc,
         q: &[f32],
-        media: &[HomogeneousMedium],
+        media: &[Medium],
     ) -> Result<Self, MediumError> {
         Ok(match desc.volume {
             VolumeKind::Spheres => Estimator::Spheres(Spheres::new(q, media)?),
@@ -159,7 +172,7 @@ impl Estimator {
 /// towards the camera: `cos = -u.v`): one number for all bins, or each bin's own when the
 /// phase varies per bin (droplet fog, per-wavelength tables).
 #[inline]
-pub(crate) fn times_phase(value: Spectrum, med: &HomogeneousMedium, cos: f32) -> Spectrum {
+pub(crate) fn times_phase(value: Spectrum, med: &Medium, cos: f32) -> Spectrum {
     if med.phase.varies_per_bin() {
         value * med.phase_bins(cos)
     } else {

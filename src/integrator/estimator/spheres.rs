@@ -12,9 +12,7 @@ use std::f32::consts::PI;
 use super::{CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds};
 use crate::integrator::exp::exp_nonpositive;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
-use crate::medium::{
-    HomogeneousMedium, MediumError, MultiSphereWalk, WalkEnd, relative_extinction,
-};
+use crate::medium::{Medium, MediumError, MultiSphereWalk, WalkEnd, relative_extinction};
 use crate::spectrum::Spectrum;
 
 /// The multiple-spheres estimator with its control parameter q, per medium.
@@ -28,7 +26,7 @@ pub struct Spheres {
 
 impl Spheres {
     /// Spheres with `q[m]` in medium `m` of `media`.
-    pub fn new(q: &[f32], media: &[HomogeneousMedium]) -> Result<Self, MediumError> {
+    pub fn new(q: &[f32], media: &[Medium]) -> Result<Self, MediumError> {
         Ok(Self {
             walks: q
                 .iter()
@@ -77,38 +75,44 @@ impl VolumeEstimator for Spheres {
         seg: &SegmentRecord,
         v: &VolumeRecord,
         _w: &[f32],
-        med: &HomogeneousMedium,
+        med: &Medium,
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_sphere(f.o, f.d, f.len, seg.at(v.s), radius)?;
-        let at = f
-            .flight
-            .map_or(*f.flux, |fl| fl.flux_at(f.flux, chord.mid()));
+        let at = f.flux_at(chord.mid());
         let x = self
             .extinction
             .get(seg.medium as usize)
             .and_then(Option::as_ref);
+        // The per-bin factors need the sphere's optical depth: its distance unless a density
+        // field maps one to the other (recomputed here, so records stay 12 bytes).
+        let u = match x {
+            Some(_) if !med.density.is_uniform() => {
+                med.density.along(seg.origin, seg.dir).depth(v.s)
+            }
+            Some(_) | None => v.s,
+        };
         // The phase function only once the exact test hit: about half the box candidates miss.
         let cos = -f.d.dot(seg.dir);
         if med.phase.varies_per_bin() {
             let k = track_length_density(&chord, radius);
-            return Some(at * sphere_weight(med, x, v, k) * med.phase_bins(cos));
+            return Some(at * sphere_weight(med, x, (u, v), k) * med.phase_bins(cos));
         }
         let k = med.phase.eval(cos) * track_length_density(&chord, radius);
-        Some(at * sphere_weight(med, x, v, k))
+        Some(at * sphere_weight(med, x, (u, v), k))
     }
 }
 
 /// A sphere's weight without the camera throughput, times `k`: what
-/// `MultiSphereWalk::walk` reports for it (`sigma_s,l e^{-(st_l - st_min) s} q / pdf_mix(s)`),
-/// recomputed from the distance and the scalar the record keeps; `x` is the medium's
-/// `relative_extinction`, None when grey. One fast exp per bin (relative error < 3e-7), none in
-/// grey media.
+/// `MultiSphereWalk::walk` reports for it (`sigma_s,l e^{-(st_l - st_min) u} q / pdf_mix(u)`),
+/// recomputed from the sphere's optical depth at density 1 `u` (its distance `v.s` in a
+/// uniform medium) and the scalar the record keeps; `x` is the medium's `relative_extinction`,
+/// None when grey. One fast exp per bin (relative error < 3e-7), none in grey media.
 #[inline]
 pub fn sphere_weight(
-    med: &HomogeneousMedium,
+    med: &Medium,
     x: Option<&Spectrum>,
-    v: &VolumeRecord,
+    (u, v): (f32, &VolumeRecord),
     k: f32,
 ) -> Spectrum {
     let mut w = med.sigma_s * (k * v.scale);
@@ -121,7 +125,7 @@ pub fn sphere_weight(
             .zip(x.0[..blocks].chunks_exact(8))
         {
             for (w, x) in wb.iter_mut().zip(xb) {
-                *w *= exp_nonpositive(-x * v.s);
+                *w *= exp_nonpositive(-x * u);
             }
         }
     }
@@ -225,7 +229,7 @@ mod tests {
         let n = 16;
         let st: Vec<f32> = (0..n).map(|l| 0.2 + 0.25 * l as f32).collect();
         let albedo: Vec<f32> = (0..n).map(|l| 0.3 + 0.04 * l as f32).collect();
-        let med = HomogeneousMedium::from_extinction_albedo(&st, &albedo, 0.3).unwrap();
+        let med = Medium::from_extinction_albedo(&st, &albedo, 0.3).unwrap();
         assert!(!med.grey);
         let x = relative_extinction(&med);
         let mut w = Spectrum::ZERO;
@@ -255,7 +259,7 @@ mod tests {
                 assert_eq!(got.len(), expected.len());
                 for (v, (s, want)) in got.iter().zip(&expected) {
                     assert_eq!(v.s, *s);
-                    let have = w * sphere_weight(&med, Some(&x), v, 1.0);
+                    let have = w * sphere_weight(&med, Some(&x), (v.s, v), 1.0);
                     for l in 0..n {
                         worst = worst.max((have.0[l] - want.0[l]).abs() / want.0[l].abs());
                     }

@@ -15,7 +15,7 @@ use super::{
 };
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::integrator::settings::Channels;
-use crate::medium::{HomogeneousMedium, Mixture, WalkEnd, sample_extinction};
+use crate::medium::{Medium, Mixture, WalkEnd, sample_extinction};
 use crate::spectrum::Spectrum;
 
 /// Cylinders ending at the sampled extinction; the gather rebuilds each camera segment's
@@ -62,7 +62,7 @@ impl VolumeEstimator for TruncatedCylinder {
         seg: &SegmentRecord,
         v: &VolumeRecord,
         w: &[f32],
-        med: &HomogeneousMedium,
+        med: &Medium,
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
@@ -84,7 +84,7 @@ impl VolumeEstimator for TruncatedCylinder {
 /// otherwise composite 4-point Gauss–Legendre.
 #[inline]
 pub fn cylinder_truncated(
-    medium: &HomogeneousMedium,
+    medium: &Medium,
     cam: &Mixture,
     fwd: Option<&Mixture>,
     chord: &CylinderChord,

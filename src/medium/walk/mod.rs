@@ -1,4 +1,4 @@
-use super::{HomogeneousMedium, MediumError, MixEval, Mixture};
+use super::{Along, Medium, MediumError, MixEval, Mixture};
 use crate::spectrum::Spectrum;
 use rand::Rng;
 
@@ -16,6 +16,26 @@ pub enum WalkEnd {
     /// and continue at the segment's end (surface or medium boundary). For `T = +inf` the weight
     /// is nonzero only in bins without extinction.
     Transmitted { weight: Spectrum },
+}
+
+impl WalkEnd {
+    /// The outcome of a walk made in optical depth `u` (a medium with a density field, see
+    /// `medium::density`) with its extinction placed at the distance `s(u)` along the ray,
+    /// within the segment's length `len`. Weights are unchanged: in `u` the segment is the
+    /// homogeneous medium.
+    #[inline]
+    pub fn at_distance(self, along: &Along, len: f32) -> Self {
+        match self {
+            WalkEnd::Scattered { s, weight } => WalkEnd::Scattered {
+                s: along.distance(s).min(len),
+                weight,
+            },
+            WalkEnd::Absorbed { s } => WalkEnd::Absorbed {
+                s: along.distance(s).min(len),
+            },
+            WalkEnd::Transmitted { weight } => WalkEnd::Transmitted { weight },
+        }
+    }
 }
 
 /// The camera-side multiple-integration-sphere walk along one medium segment (method note 2).
@@ -65,7 +85,7 @@ impl MultiSphereWalk {
     #[inline]
     pub fn walk<R, F>(
         &self,
-        medium: &HomogeneousMedium,
+        medium: &Medium,
         mix: &Mixture,
         seg_len: f32,
         rng: &mut R,
@@ -89,7 +109,7 @@ impl MultiSphereWalk {
     #[inline]
     pub fn walk_scaled<R, F>(
         &self,
-        medium: &HomogeneousMedium,
+        medium: &Medium,
         mix: &Mixture,
         seg_len: f32,
         rng: &mut R,
@@ -107,7 +127,7 @@ impl MultiSphereWalk {
     #[inline]
     fn walk_eval<R, F>(
         &self,
-        medium: &HomogeneousMedium,
+        medium: &Medium,
         mix: &Mixture,
         seg_len: f32,
         rng: &mut R,
@@ -142,7 +162,7 @@ impl MultiSphereWalk {
 /// outcomes and weights as [`MultiSphereWalk::walk`] with q = 1, without spheres.
 #[inline]
 pub fn sample_extinction<R: Rng + ?Sized>(
-    medium: &HomogeneousMedium,
+    medium: &Medium,
     mix: &Mixture,
     seg_len: f32,
     rng: &mut R,
@@ -167,7 +187,7 @@ fn transmitted(mix: &Mixture, seg_len: f32) -> WalkEnd {
 /// biased in colour.
 #[inline]
 fn extinction<R: Rng + ?Sized>(
-    medium: &HomogeneousMedium,
+    medium: &Medium,
     mix: &Mixture,
     e: &MixEval,
     s: f32,

@@ -7,7 +7,7 @@
 //! off by |z| > 10 in at least one bin.
 
 use super::{MultiSphereWalk, WalkEnd, sample_extinction};
-use crate::medium::{ChannelPick, HomogeneousMedium, Mixture};
+use crate::medium::{ChannelPick, Medium, Mixture};
 use crate::spectrum::Spectrum;
 use crate::test_stats::Acc;
 use rand::SeedableRng;
@@ -25,11 +25,11 @@ const T: f32 = 1.0;
 /// A strongly non-uniform "throughput" for the throughput-proportional pick.
 const W_PICK: [f32; N] = [1.0, 0.05, 2.0, 0.3];
 
-fn medium() -> HomogeneousMedium {
-    HomogeneousMedium::from_extinction_albedo(&ST, &ALB, 0.5).unwrap()
+fn medium() -> Medium {
+    Medium::from_extinction_albedo(&ST, &ALB, 0.5).unwrap()
 }
 
-fn mixture(m: &HomogeneousMedium, pick: ChannelPick) -> Mixture {
+fn mixture(m: &Medium, pick: ChannelPick) -> Mixture {
     Mixture::new(pick, &Spectrum::from_slice(&W_PICK), m, 0.1)
 }
 

@@ -29,6 +29,10 @@ pub struct MediumDesc {
     /// With `visibility`: the fraction of the extinction that scatters (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub albedo: Option<f32>,
+    /// A density field scaling the coefficients in space (they, and `visibility`, are the
+    /// values at density 1); uniform when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<crate::medium::DensityDesc>,
 }
 
 impl MediumDesc {
@@ -48,12 +52,28 @@ impl MediumDesc {
             visibility: self.visibility,
             albedo: self.albedo,
         };
-        crate::medium::check_medium(
+        let mut out = crate::medium::check_medium(
             keys,
             self.g,
             self.phase.as_ref(),
             self.droplets.as_ref(),
             exists,
+        );
+        if let Some(d) = &self.density {
+            out.extend(
+                d.check()
+                    .into_iter()
+                    .map(|(k, m)| (format!("density.{k}"), m)),
+            );
+        }
+        out
+    }
+
+    /// The density field (uniform when not given).
+    pub fn density(&self) -> crate::medium::Density {
+        self.density.as_ref().map_or(
+            crate::medium::Density::Uniform,
+            crate::medium::DensityDesc::build,
         )
     }
 }

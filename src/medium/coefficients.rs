@@ -1,13 +1,15 @@
-use super::{MediumError, Phase};
+use super::{Density, MediumError, Phase};
 use crate::spectrum::{MAX_BINS, Spectrum};
 
-/// A homogeneous medium: per-bin scattering and absorption coefficients in 1/m and a phase
-/// function (the same in every bin, or one per bin: see [`Phase`]). `sigma_t = sigma_s + sigma_a`; lanes past `n` are zero.
+/// A medium: per-bin scattering and absorption coefficients in 1/m where its density is 1, a
+/// phase function (the same in every bin, or one per bin: see [`Phase`]) and the density field
+/// that scales the coefficients in space (`sigma(x) = rho(x) sigma`, uniform by default: the
+/// homogeneous medium). `sigma_t = sigma_s + sigma_a`; lanes past `n` are zero.
 ///
-/// Fields are public for reading in hot loops; build it with [`HomogeneousMedium::new`], which
+/// Fields are public for reading in hot loops; build it with [`Medium::new`], which
 /// validates, so that the invariants hold.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HomogeneousMedium {
+pub struct Medium {
     /// Scattering coefficient per bin (1/m).
     pub sigma_s: Spectrum,
     /// Absorption coefficient per bin (1/m).
@@ -20,10 +22,12 @@ pub struct HomogeneousMedium {
     pub n: usize,
     /// All active bins share one sigma_t: per-bin exponentials are then all the same number.
     pub grey: bool,
+    /// Where the medium is: `rho(x)` (method note 10).
+    pub density: Density,
 }
 
-impl HomogeneousMedium {
-    /// A Henyey–Greenstein medium: see [`HomogeneousMedium::with_phase`]; |g| < 1.
+impl Medium {
+    /// A Henyey–Greenstein medium: see [`Medium::with_phase`]; |g| < 1.
     pub fn new(
         sigma_s: &Spectrum,
         sigma_a: &Spectrum,
@@ -73,7 +77,13 @@ impl HomogeneousMedium {
             phase,
             n,
             grey,
+            density: Density::Uniform,
         })
+    }
+
+    /// The same medium with `density` (coefficients as given are those at `rho = 1`).
+    pub fn with_density(self, density: Density) -> Self {
+        Self { density, ..self }
     }
 
     /// From per-bin extinction (1/m) and single-scattering albedo, the paper's parametrisation:
