@@ -22,7 +22,9 @@ pub fn resolution_at(p: Vec3) -> f32 {
 /// A hair of slack lets the padded bounds of a sphere or disc of radius [`MAX_LENGTH`] pass.
 pub fn out_of_range(p: Vec3) -> Option<String> {
     let m = p.abs().max_element();
-    (!(m <= MAX_LENGTH * (1.0 + 1e-4))).then(|| {
+    // NaN compares false: a non-finite coordinate is out of range too.
+    let within = m <= MAX_LENGTH * (1.0 + 1e-4);
+    (!within).then(|| {
         format!(
             "a coordinate of {m:e} m is beyond the {MAX_LENGTH:e} m that brume's \
              single-precision geometry holds (larger lengths overflow areas, normals and \
