@@ -251,7 +251,7 @@ fn a_ray_meets_the_floor_before_a_coplanar_null_face() {
     );
 }
 
-/// Item 17, the measurement: a sensor 1 mm below the floor read 2.78 lx (here 589
+/// Item 17, the measurement: a sensor 1 mm below the floor read 2.78 lx (here 481
 /// lx before the fix) though nothing can light it; it reads exactly 0. Above the floor the
 /// reading agrees (|z| <= 4) with the same scene with the box lifted 1 cm off the floor.
 #[test]
