@@ -11,6 +11,8 @@ use obvhs::{
 };
 
 use super::analytic::{Analytic, AnalyticKind};
+use super::limits::{collapsed_at, out_of_range};
+use super::ray::null_rank;
 use super::sampling::{concentric_disc, uniform_sphere, uniform_triangle};
 use super::tessellate::{WorldTri, tessellate};
 use super::triangle::{ShearedRay, TriGeom};
@@ -56,6 +58,9 @@ pub struct Geometry {
     /// Triangles in BVH leaf order (so a leaf's primitives are adjacent in memory); analytic
     /// primitives' slots hold a NaN triangle, which never hits.
     slot_tris: Vec<TriGeom>,
+    /// Per BVH slot: does the primitive belong to a shape without a material (a null boundary,
+    /// which [`Geometry::intersect`] ranks behind a surface it coincides with)?
+    slot_null: Vec<bool>,
     bounds: Aabb,
     areas: Vec<f32>,
     samplers: Vec<AreaSampler>,
@@ -95,7 +100,7 @@ impl Parts {
             ShapeKind::Quad { .. } | ShapeKind::Box { .. } | ShapeKind::Mesh { .. } => None,
         };
         match analytic {
-            Some(kind) => self.add_analytic(i, desc, kind).map_err(bad),
+            Some(kind) => self.add_analytic(i, desc, kind).map_err(|m| bad(&m)),
             None => self.add_triangles(i, desc),
         }
     }
@@ -105,18 +110,22 @@ impl Parts {
         i: usize,
         desc: &ShapeDesc,
         kind: AnalyticKind,
-    ) -> Result<(), &'static str> {
+    ) -> Result<(), String> {
         let radius = match kind {
             AnalyticKind::Sphere { radius } | AnalyticKind::Disc { radius } => radius,
         };
         if !(radius > 0.0 && radius.is_finite()) {
-            return Err("radius must be positive");
+            return Err("radius must be positive".into());
         }
         let a = Analytic {
             kind,
             transform: desc.transform,
             shape: i as u32,
         };
+        let (lo, hi) = a.bounds();
+        if let Some(why) = out_of_range(lo).or_else(|| out_of_range(hi)) {
+            return Err(why);
+        }
         self.areas.push(analytic_area(&a));
         self.samplers
             .push(AreaSampler::Analytic(self.analytic.len() as u32));
@@ -127,11 +136,20 @@ impl Parts {
     fn add_triangles(&mut self, i: usize, desc: &ShapeDesc) -> Result<(), GeometryError> {
         let first = self.world.len();
         tessellate(i, desc, &mut self.world)?;
+        let bad = |message: String| GeometryError::InvalidShape { shape: i, message };
         let mut total = 0.0f32;
         let mut cdf = Vec::with_capacity(self.world.len() - first);
         for t in &self.world[first..] {
+            if let Some(why) = t.v.iter().find_map(|&v| out_of_range(v)) {
+                return Err(bad(why));
+            }
             total += 0.5 * (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).length();
             cdf.push(total);
+        }
+        // Vertices that round to the same f32 values (a small shape far from the origin) leave
+        // triangles no ray can hit: the shape would be silently missing from the image.
+        if !cdf.is_empty() && total <= 0.0 {
+            return Err(bad(collapsed_at(self.world[first].v[0])));
         }
         self.tri_shape.resize(self.world.len(), i as u32);
         self.areas.push(total);
@@ -209,7 +227,7 @@ impl Geometry {
                 .map(|&p| tris.get(p as usize).copied().unwrap_or(TriGeom::INVALID))
                 .collect()
         });
-        Ok(Geometry {
+        let mut geometry = Geometry {
             shapes,
             tris,
             tri_shape,
@@ -217,10 +235,17 @@ impl Geometry {
             analytic,
             bvh,
             slot_tris,
+            slot_null: Vec::new(),
             bounds,
             areas,
             samplers,
-        })
+        };
+        let slot_null = geometry.bvh.as_ref().map_or(Vec::new(), |b| {
+            let slots = b.primitive_indices.iter();
+            slots.map(|&p| geometry.prim_null(p as usize)).collect()
+        });
+        geometry.slot_null = slot_null;
+        Ok(geometry)
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -267,7 +292,9 @@ impl Geometry {
         }
     }
 
-    /// Closest hit in `(0, t_max)`, traversing the CWBVH.
+    /// Closest hit in `(0, t_max)`, traversing the CWBVH. A null boundary (no material) ranks
+    /// behind any surface with a material less than a spawn offset beyond it
+    /// ([`null_rank`]), so that coincident faces are met surface first.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
         let o = Vec3A::from(ray.o);
@@ -276,12 +303,34 @@ impl Geometry {
         let found = bvh.ray_traverse(
             BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
             &mut hit,
-            |r, id| self.slot_t(bvh, id, ray, &sr, r.tmax),
+            |r, id| {
+                let t = self.slot_t(bvh, id, ray, &sr, r.tmax);
+                if t < r.tmax && self.slot_null[id] {
+                    null_rank(ray, t, t_max)
+                } else {
+                    t
+                }
+            },
         );
         if !found {
             return None;
         }
-        Some(self.hit_details(ray, bvh.primitive_indices[hit.primitive_id as usize], hit.t))
+        let prim = bvh.primitive_indices[hit.primitive_id as usize];
+        let t = if self.slot_null[hit.primitive_id as usize] {
+            self.prim_t(prim as usize, ray, &sr, t_max)
+        } else {
+            hit.t
+        };
+        Some(self.hit_details(ray, prim, t))
+    }
+
+    /// Does primitive `prim` belong to a null boundary (a shape without a material)?
+    fn prim_null(&self, prim: usize) -> bool {
+        let shape = match self.tri_shape.get(prim) {
+            Some(&s) => s,
+            None => self.analytic[prim - self.tris.len()].shape,
+        };
+        self.shapes[shape as usize].material.is_none()
     }
 
     /// Is anything hit in `(0, t_max)`?
@@ -299,14 +348,20 @@ impl Geometry {
     /// Closest hit by testing every primitive: the reference the BVH is checked against.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let sr = ShearedRay::new(ray.o.into(), ray.d.into());
-        let mut best = (t_max, u32::MAX);
+        // (rank, primitive, distance): ranked as `intersect` ranks.
+        let mut best = (t_max, u32::MAX, t_max);
         for prim in 0..self.num_primitives() {
             let t = self.prim_t(prim, ray, &sr, best.0);
-            if t < best.0 {
-                best = (t, prim as u32);
+            let rank = if self.prim_null(prim) {
+                null_rank(ray, t, t_max)
+            } else {
+                t
+            };
+            if rank < best.0 {
+                best = (rank, prim as u32, t);
             }
         }
-        (best.1 != u32::MAX).then(|| self.hit_details(ray, best.1, best.0))
+        (best.1 != u32::MAX).then(|| self.hit_details(ray, best.1, best.2))
     }
 
     fn hit_details(&self, ray: &Ray, prim: u32, t: f32) -> Hit {

@@ -4,6 +4,7 @@ mod analytic;
 mod bvh;
 mod edge;
 mod error;
+mod limits;
 mod media;
 mod obj;
 mod ray;
@@ -15,6 +16,7 @@ mod triangle;
 
 pub use bvh::{Geometry, Hit};
 pub use error::GeometryError;
+pub use limits::{MAX_LENGTH, out_of_range, resolution_at};
 pub use obj::load_obj;
 pub use ray::{Aabb, Ray, spawn};
 pub use shape::{ShapeDesc, ShapeKind};

@@ -13,7 +13,7 @@ use super::media;
 use super::shapes;
 use crate::camera::Camera;
 use crate::film::FilmExtras;
-use crate::geometry::Geometry;
+use crate::geometry::{Geometry, GeometryError};
 use crate::integrator::Integrator;
 use crate::integrator::radius::auto_radius;
 use crate::light::{Light, LightSet};
@@ -67,14 +67,17 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
         None => auto_radius(&camera, &geometry),
     };
     // Volumes reach as far as the larger of the two radii (`integrator::Radii`).
+    let mut radius_key = "integrator.radius";
     if let Some(ri) = d.integrator.radius_indirect
         && ri.is_finite()
+        && ri > b.radius
     {
-        b.radius = b.radius.max(ri);
+        b.radius = ri;
+        radius_key = "integrator.radius_indirect";
     }
     let lights = build_lights(&b, d, &geometry, area_lights)?;
     let (world_min, world_max) = world_box(&geometry, &camera, b.radius);
-    let warnings = warnings(scene, &geometry, &lights, b.radius);
+    let warnings = warnings(scene, &geometry, &lights, (radius_key, b.radius));
     let outside = b.outside_medium();
     let mut built = Scene {
         grid,
@@ -179,7 +182,12 @@ fn build_shapes(
         }
         shapes.push(shape);
     }
-    let geometry = Geometry::new(shapes).map_err(|e| b.source.invalid("shapes", e.to_string()))?;
+    let geometry = Geometry::new(shapes).map_err(|e| match e {
+        GeometryError::InvalidShape { shape, message } => {
+            b.source.invalid(&format!("shapes.{shape}"), message)
+        }
+        GeometryError::Obj { .. } => b.source.invalid("shapes", e.to_string()),
+    })?;
     Ok((geometry, area_lights))
 }
 
@@ -217,7 +225,7 @@ fn warnings(
     scene: &LoadedScene,
     geometry: &Geometry,
     lights: &LightSet,
-    radius: f32,
+    (radius_key, radius): (&str, f32),
 ) -> Vec<SceneWarning> {
     let source = scene.source();
     let mut w = Vec::new();
@@ -233,7 +241,7 @@ fn warnings(
     let size = bounds.diagonal().length();
     if !bounds.is_empty() && size > 0.0 && radius > LARGE_RADIUS * size {
         w.push(source.warning(
-            "integrator.radius",
+            radius_key,
             format!(
                 "{radius} m is {:.0} % of the scene's size ({size:.3} m across its bounds): \
                  integration volumes this large blur the image and lose the light they reach \

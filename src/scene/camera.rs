@@ -86,8 +86,8 @@ impl CameraDesc {
                 format!("the image has more than {MAX_PIXELS} pixels"),
             );
         }
-        c.vector(&format!("{key}.position"), self.position);
-        c.vector(&format!("{key}.look_at"), self.look_at);
+        c.point(&format!("{key}.position"), self.position);
+        c.point(&format!("{key}.look_at"), self.look_at);
         c.direction(&format!("{key}.up"), self.up);
         if self.position == self.look_at {
             c.fail(format!("{key}.look_at"), "must differ from camera.position");
@@ -135,7 +135,7 @@ impl CameraDesc {
                     ("view_height", self.view_height),
                 ] {
                     if let Some(v) = v {
-                        c.positive(&format!("{key}.{k}"), v as f64);
+                        c.length(&format!("{key}.{k}"), v);
                     }
                 }
                 if self.fov.is_some() {

@@ -6,6 +6,7 @@ use std::path::Path;
 
 use super::source::Source;
 use super::spectrum_desc::{LinesDesc, RgbKind, SpectrumDesc, SpectrumRef};
+use crate::geometry::MAX_LENGTH;
 
 /// One problem: the dotted key it is about and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,6 +93,33 @@ impl<'a> Checker<'a> {
         if v.is_finite() && v > max {
             self.fail(key, format!("{v} {unit} is above the {max:e} {unit} {why}"));
         }
+    }
+
+    /// A length (a size, a radius), m: positive and within what the geometry holds.
+    pub fn length(&mut self, key: &str, v: f32) {
+        self.positive(key, v as f64);
+        self.within_geometry(key, v);
+    }
+
+    /// A length or coordinate no larger than [`MAX_LENGTH`] in magnitude (its other checks are
+    /// the caller's): beyond it f32 geometry overflows.
+    pub fn within_geometry(&mut self, key: &str, v: f32) {
+        if v.is_finite() && v.abs() > MAX_LENGTH {
+            self.fail(
+                key,
+                format!(
+                    "{v:e} m is beyond the {MAX_LENGTH:e} m that brume's single-precision \
+                     geometry holds (larger lengths overflow areas, normals and bounding boxes)"
+                ),
+            );
+        }
+    }
+
+    /// A position, m: finite coordinates within what the geometry holds.
+    pub fn point(&mut self, key: &str, v: [f32; 3]) {
+        self.vector(key, v);
+        let largest = v.iter().map(|c| c.abs()).fold(0.0, f32::max);
+        self.within_geometry(key, largest);
     }
 
     pub fn vector(&mut self, key: &str, v: [f32; 3]) {

@@ -109,7 +109,7 @@ impl SensorDesc {
         match &self.kind {
             SensorKindDesc::Luminance(s) => check_luminance(c, key, s, (width, height)),
             SensorKindDesc::Illuminance(s) => {
-                c.vector(&format!("{key}.position"), s.position);
+                c.point(&format!("{key}.position"), s.position);
                 c.direction(&format!("{key}.normal"), s.normal);
             }
         }

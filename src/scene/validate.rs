@@ -21,6 +21,14 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     let film_ok = c.problems.is_empty();
     d.camera.check(&mut c, "camera");
     d.integrator.check(|k, m| c.fail(k, m));
+    // Integration volumes are boxed in f32 like shapes: a radius of 1e20 m overflowed the
+    // gather BVH's build (a stack overflow, or obvhs indexing out of bounds).
+    if let Some(r) = d.integrator.radius.value() {
+        c.within_geometry("integrator.radius", r);
+    }
+    if let Some(r) = d.integrator.radius_indirect {
+        c.within_geometry("integrator.radius_indirect", r);
+    }
     for (name, s) in &d.spectra {
         c.named_spectrum(&format!("spectra.{name}"), s);
     }

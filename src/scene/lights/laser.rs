@@ -43,9 +43,9 @@ impl LaserDesc {
         if let Some(p) = self.power {
             super::check_power(c, key, p);
         }
-        c.vector(&format!("{key}.position"), self.position);
+        c.point(&format!("{key}.position"), self.position);
         c.direction(&format!("{key}.direction"), self.direction);
-        c.positive(&format!("{key}.radius"), self.radius as f64);
+        c.length(&format!("{key}.radius"), self.radius);
     }
 
     /// `unit`: the light's spectrum normalised to 1 W.

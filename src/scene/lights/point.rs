@@ -60,7 +60,7 @@ impl PointDesc {
         if let Some(p) = self.power {
             super::check_power(c, key, p);
         }
-        c.vector(&format!("{key}.position"), self.position);
+        c.point(&format!("{key}.position"), self.position);
         let orient = [
             ("direction", self.direction),
             ("profile_c0", self.profile_c0),

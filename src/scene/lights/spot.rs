@@ -61,7 +61,7 @@ impl SpotDesc {
         if let Some(p) = self.power {
             super::check_power(c, key, p);
         }
-        c.vector(&format!("{key}.position"), self.position);
+        c.point(&format!("{key}.position"), self.position);
         c.direction(&format!("{key}.direction"), self.direction);
         let orient = [("profile_c0", self.profile_c0)];
         amount::check_orientation(c, key, self.profile.as_deref(), &orient);

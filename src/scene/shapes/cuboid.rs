@@ -28,9 +28,13 @@ impl BoxDesc {
     }
 }
 
-/// Side lengths: finite and positive.
+/// Side lengths: finite, positive and within what the geometry holds.
 pub(super) fn check_size(c: &mut Checker, key: &str, size: &[f32]) {
+    let key = format!("{key}.size");
     if size.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
-        c.fail(format!("{key}.size"), "sizes must be finite and > 0");
+        c.fail(key, "sizes must be finite and > 0");
+    } else {
+        let largest = size.iter().copied().fold(0.0, f32::max);
+        c.within_geometry(&key, largest);
     }
 }

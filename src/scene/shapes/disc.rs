@@ -14,7 +14,7 @@ pub struct DiscDesc {
 
 impl DiscDesc {
     pub(super) fn check(&self, c: &mut Checker, key: &str) {
-        c.positive(&format!("{key}.radius"), self.radius as f64);
+        c.length(&format!("{key}.radius"), self.radius);
     }
 
     pub(super) fn build(&self) -> ShapeKind {

@@ -162,7 +162,7 @@ impl ShapeDesc {
         }
         crate::scene::lights::check_importance(c, key, s.importance);
         let t = &s.transform;
-        c.vector(&format!("{key}.transform.translate"), t.translate);
+        c.point(&format!("{key}.transform.translate"), t.translate);
         c.vector(&format!("{key}.transform.rotate"), t.rotate);
         if t.scale.iter().any(|x| !(x.is_finite() && *x != 0.0)) {
             c.fail(
