@@ -187,3 +187,48 @@ power = {}
     );
     assert!(e.contains("key `lights.0.power`"), "{e}");
 }
+
+/// Issue 31: `integrator.q = 1e-9` on a 32 x 32 fog-cube grew about 160 MB/s until memory ran
+/// out, and q = 1e-5 with `max_gather_bytes = 1e8` reached 2.6 GB. A budget that cannot hold
+/// one row of camera paths (the smallest tile) is refused before anything is built, by render
+/// and info alike, with the estimate. Run under `ulimit -v` and a timeout, so that a
+/// regression fails instead of exhausting the machine.
+#[test]
+fn a_gather_budget_below_one_row_is_refused_before_rendering() {
+    let t = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fog-cube.toml");
+    let size = "--set camera.width=32 --set camera.height=32";
+    for (command, sets, estimate) in [
+        ("render", "--set integrator.q=1e-9", "TiB"),
+        ("info", "--set integrator.q=1e-9", "TiB"),
+        (
+            "render",
+            "--set integrator.q=1e-5 --set integrator.max_gather_bytes=100000000",
+            "GiB",
+        ),
+    ] {
+        let output = if command == "render" { "-o x.exr" } else { "" };
+        let script = format!(
+            "ulimit -v 2000000; exec timeout 60 '{}' {command} '{}' {size} {sets} {output}",
+            env!("CARGO_BIN_EXE_brume"),
+            scene.display()
+        );
+        let t0 = std::time::Instant::now();
+        let out = std::process::Command::new("sh")
+            .current_dir(t.path())
+            .args(["-c", &script])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{command} {sets}: {err}");
+        assert!(
+            err.contains("integrator.q")
+                && err.contains("one row of camera paths may leave")
+                && err.contains(estimate)
+                && err.contains("max_gather_bytes"),
+            "{err}"
+        );
+        assert!(t0.elapsed().as_secs() < 10, "{command} {sets}: not refused at once");
+        assert!(!t.path().join("x.exr").exists());
+    }
+}
