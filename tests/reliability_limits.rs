@@ -228,7 +228,10 @@ fn a_gather_budget_below_one_row_is_refused_before_rendering() {
                 && err.contains("max_gather_bytes"),
             "{err}"
         );
-        assert!(t0.elapsed().as_secs() < 10, "{command} {sets}: not refused at once");
+        assert!(
+            t0.elapsed().as_secs() < 10,
+            "{command} {sets}: not refused at once"
+        );
         assert!(!t.path().join("x.exr").exists());
     }
 }

@@ -40,7 +40,12 @@ impl MemoryEstimate {
     /// paths share a throughput (the worst case). A `width` x `height` image of `bins` spectral
     /// bins; `media`: whether the scene has any. `"auto"` budgets count at their starting
     /// values, and an automatic q at the smallest it may choose.
-    pub fn new(settings: &IntegratorDesc, (width, height): (u32, u32), bins: usize, media: bool) -> Self {
+    pub fn new(
+        settings: &IntegratorDesc,
+        (width, height): (u32, u32),
+        bins: usize,
+        media: bool,
+    ) -> Self {
         let row_paths = f64::from(width) * f64::from(samples(settings));
         let per_path = path_bytes(settings, bins, media);
         let pixels = f64::from(width) * f64::from(height);

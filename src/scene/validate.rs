@@ -54,7 +54,8 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
 fn gather_budget(c: &mut Checker, d: &SceneDesc) {
     let bins = super::lines::scene_grid(d).map_or(d.film.bins, |g| g.n);
     let size = (d.camera.width, d.camera.height);
-    let est = crate::integrator::MemoryEstimate::new(&d.integrator, size, bins, !d.media.is_empty());
+    let est =
+        crate::integrator::MemoryEstimate::new(&d.integrator, size, bins, !d.media.is_empty());
     if let Some(m) = est.row_over_budget(&d.integrator) {
         let key = match d.integrator.q.value() {
             Some(_) => "integrator.q",

@@ -251,6 +251,10 @@ fn sigterm_while_the_gather_is_built_exits_promptly() {
     std::thread::sleep(Duration::from_millis(2500));
     let t0 = Instant::now();
     let (code, err) = r.terminate();
-    assert!(t0.elapsed() < Duration::from_secs(3), "{:?}: {err}", t0.elapsed());
+    assert!(
+        t0.elapsed() < Duration::from_secs(3),
+        "{:?}: {err}",
+        t0.elapsed()
+    );
     assert_kept_nothing(d, code, &err);
 }

@@ -84,5 +84,8 @@ fn a_row_over_the_budget_stops_the_pass() {
     assert_eq!((e.row, e.budget), (3, 10_000));
     assert!(e.bytes > 10_000);
     let m = e.to_string();
-    assert!(m.contains("9.8 KiB") && m.contains("max_gather_bytes"), "{m}");
+    assert!(
+        m.contains("9.8 KiB") && m.contains("max_gather_bytes"),
+        "{m}"
+    );
 }
