@@ -1,6 +1,6 @@
 //! The memory a render is expected to need, from its settings alone: one function for `brume
 //! info`, the check before a render starts and the refusal of a gather budget that cannot hold
-//! one row of camera paths. Figures are in binary units (GiB = 2^30 bytes) everywhere.
+//! one camera path's records. Figures are in binary units (GiB = 2^30 bytes) everywhere.
 
 use super::gather::{BUILD_BYTES_PER_PRIM, BVH_BYTES_PER_PRIM};
 use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord};
@@ -27,8 +27,9 @@ pub struct MemoryEstimate {
     pub gather_volumes: f64,
     /// Peak bytes of the gather of a whole pass in one piece (building it included).
     pub gather_bytes: f64,
-    /// The same for one row of camera paths: the smallest piece a pass is tiled into.
-    pub row_gather_bytes: f64,
+    /// The same for one camera path (a row of them is the smallest tile; a row over the budget
+    /// stops the render, see `camera_pass::OverBudget`).
+    pub path_gather_bytes: f64,
     /// The gather budget per pass (`integrator.max_gather_bytes`, resolved).
     pub budget: f64,
     pub film_bytes: f64,
@@ -52,7 +53,7 @@ impl MemoryEstimate {
         Self {
             gather_volumes: row_paths * f64::from(height) * volumes_per_path(settings, media),
             gather_bytes: row_paths * f64::from(height) * per_path,
-            row_gather_bytes: row_paths * per_path,
+            path_gather_bytes: per_path,
             budget: settings.gather_budget() as f64,
             film_bytes: pixels * bins as f64 * FILM_BYTES_PER_VALUE,
         }
@@ -73,10 +74,12 @@ impl MemoryEstimate {
         self.film_bytes + self.gather_held()
     }
 
-    /// Why one row of camera paths cannot fit the gather budget (the render would have to
-    /// exceed it), or None. The message gives the estimate and what to change.
-    pub fn row_over_budget(&self, settings: &IntegratorDesc) -> Option<String> {
-        if self.row_gather_bytes <= self.budget {
+    /// Why one camera path cannot fit the gather budget (no tile could hold it), or None. The
+    /// estimate of a whole row could refuse a camera that sees no medium; one path reaching a
+    /// medium with its expected 1/q volumes is what a tiny q means. The message gives the
+    /// estimate and what to change.
+    pub fn path_over_budget(&self, settings: &IntegratorDesc) -> Option<String> {
+        if self.path_gather_bytes <= self.budget {
             return None;
         }
         let q = settings
@@ -84,11 +87,10 @@ impl MemoryEstimate {
             .value()
             .map_or("auto".to_string(), |q| q.to_string());
         Some(format!(
-            "with q = {q}, one row of camera paths may leave {} of gather records, more than the \
-             gather budget of {} per pass (integrator.max_gather_bytes; a pass is split into \
-             tiles of whole rows); raise integrator.q, lower integrator.camera_samples or \
-             camera.width, or raise integrator.max_gather_bytes",
-            format_bytes(self.row_gather_bytes),
+            "with q = {q}, one camera path may leave {} of gather records, more than the gather \
+             budget of {} per pass (integrator.max_gather_bytes; a pass is split into tiles of \
+             whole rows of camera paths); raise integrator.q or integrator.max_gather_bytes",
+            format_bytes(self.path_gather_bytes),
             format_bytes(self.budget)
         ))
     }
@@ -154,22 +156,22 @@ mod tests {
         assert_eq!(format_bytes(3.0 * (1u64 << 40) as f64), "3.0 TiB");
     }
 
-    /// Issue 31: q = 1e-9 on 32 x 32 pixels was rendered until memory ran out; its row alone
-    /// exceeds the default budget, while the shipped q = 1 fits many times over.
+    /// Issue 31: q = 1e-9 on 32 x 32 pixels was rendered until memory ran out; one of its paths
+    /// alone exceeds the default budget, while the shipped q = 1 fits many times over.
     #[test]
-    fn a_row_over_the_budget_is_reported() {
+    fn a_path_over_the_budget_is_reported() {
         let mut s = IntegratorDesc {
             q: Setting::Value(1e-9),
             camera_samples: Setting::Value(2),
             ..IntegratorDesc::default()
         };
         let e = MemoryEstimate::new(&s, (32, 32), 32, true);
-        assert!(e.row_gather_bytes > e.budget);
-        let m = e.row_over_budget(&s).unwrap();
-        assert!(m.contains("TiB") && m.contains("4.0 GiB"), "{m}");
+        assert!(e.path_gather_bytes > e.budget);
+        let m = e.path_over_budget(&s).unwrap();
+        assert!(m.contains("264.5 GiB") && m.contains("4.0 GiB"), "{m}");
         s.q = Setting::Value(1.0);
         let e = MemoryEstimate::new(&s, (32, 32), 32, true);
-        assert_eq!(e.row_over_budget(&s), None);
+        assert_eq!(e.path_over_budget(&s), None);
         assert_eq!(e.tiles(), 1.0);
         assert_eq!(e.gather_held(), e.gather_bytes);
     }

@@ -49,14 +49,14 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     c.problems
 }
 
-/// A gather budget that cannot hold one row of camera paths (a tiny q) is refused here, before
+/// A gather budget that cannot hold one camera path's records (a tiny q) is refused here, before
 /// anything is built or rendered, with the estimate (issue 31).
 fn gather_budget(c: &mut Checker, d: &SceneDesc) {
     let bins = super::lines::scene_grid(d).map_or(d.film.bins, |g| g.n);
     let size = (d.camera.width, d.camera.height);
     let est =
         crate::integrator::MemoryEstimate::new(&d.integrator, size, bins, !d.media.is_empty());
-    if let Some(m) = est.row_over_budget(&d.integrator) {
+    if let Some(m) = est.path_over_budget(&d.integrator) {
         let key = match d.integrator.q.value() {
             Some(_) => "integrator.q",
             None => "integrator.max_gather_bytes",
