@@ -467,7 +467,7 @@ fn merge_compares_the_gather_budget_and_not_the_machine() {
             "--pass-range",
             "1..3",
             "--set",
-            "integrator.max_gather_bytes=20000",
+            "integrator.max_gather_bytes=60000",
             "-o",
             "q1.brume",
         ],
@@ -475,7 +475,7 @@ fn merge_compares_the_gather_budget_and_not_the_machine() {
     let out = brume(d, &["merge", "p0.brume", "q1.brume", "-o", "m3.exr"]);
     let err = stderr(&out);
     assert!(
-        !out.status.success() && err.contains("gather memory budget 20000 bytes"),
+        !out.status.success() && err.contains("gather memory budget 60000 bytes"),
         "{err}"
     );
     let out = try_render(
@@ -488,7 +488,7 @@ fn merge_compares_the_gather_budget_and_not_the_machine() {
             "-o",
             "r.brume",
             "--set",
-            "integrator.max_gather_bytes=20000",
+            "integrator.max_gather_bytes=60000",
         ],
     );
     assert!(

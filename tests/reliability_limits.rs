@@ -187,3 +187,53 @@ power = {}
     );
     assert!(e.contains("key `lights.0.power`"), "{e}");
 }
+
+/// Issue 31: `integrator.q = 1e-9` on a 32 x 32 fog-cube grew about 160 MB/s until memory ran
+/// out, and q = 1e-5 with `max_gather_bytes = 1e8` reached 2.6 GB. A budget that cannot hold
+/// one camera path's expected records is refused before anything is built, by render and info
+/// alike, with the estimate; a row of camera paths over the budget (32 x 2 paths of ~63 000
+/// volumes, 1.1 GiB, against 95 MiB) stops the render at once with an error. Run under
+/// `ulimit -v` and a timeout, so that a regression fails instead of exhausting the machine.
+#[test]
+fn gather_memory_over_the_budget_is_refused_or_stopped() {
+    let t = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fog-cube.toml");
+    let size = "--set camera.width=32 --set camera.height=32";
+    let refused = "one camera path may leave 264.5 GiB of gather records, more than the gather \
+                   budget of 4.0 GiB";
+    for (command, sets, message) in [
+        ("render", "--set integrator.q=1e-9", refused),
+        ("info", "--set integrator.q=1e-9", refused),
+        (
+            "render",
+            "--set integrator.q=1e-5 --set integrator.max_gather_bytes=100000000",
+            "over the gather budget of 95.4 MiB",
+        ),
+    ] {
+        let output = if command == "render" { "-o x.exr" } else { "" };
+        let script = format!(
+            "ulimit -v 2000000; exec timeout 60 '{}' {command} '{}' {size} {sets} {output}",
+            env!("CARGO_BIN_EXE_brume"),
+            scene.display()
+        );
+        let t0 = std::time::Instant::now();
+        let out = std::process::Command::new("sh")
+            .current_dir(t.path())
+            .args(["-c", &script])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{command} {sets}: {err}");
+        assert!(
+            err.contains(message)
+                && err.contains("integrator.q")
+                && err.contains("integrator.max_gather_bytes"),
+            "{err}"
+        );
+        assert!(
+            t0.elapsed().as_secs() < 20,
+            "{command} {sets}: not stopped at once"
+        );
+        assert!(!t.path().join("x.exr").exists());
+    }
+}

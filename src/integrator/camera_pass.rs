@@ -2,7 +2,7 @@
 //! media, leaving integration spheres on diffuse surfaces and the estimator's integration
 //! volumes in media.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use rand::Rng as _;
 use rayon::prelude::*;
@@ -16,8 +16,8 @@ use super::{Integrator, Radii};
 use crate::film::{Layer, PassBuffer};
 use crate::world::Scene;
 
-/// Rows traced together before the memory budget is checked: fixed, so that where a pass is
-/// split into tiles never depends on the thread count.
+/// Rows traced together (in parallel) while a tile has room: fixed, so that the work never
+/// depends on the thread count. Tiles end between any two rows.
 pub const ROW_BATCH: u32 = 8;
 
 /// Which camera paths a camera pass traces.
@@ -28,67 +28,144 @@ pub struct CameraJob {
     /// The pass's gather radii (surface spheres near an edge are renormalised with them).
     pub radii: Radii,
     pub first_row: u32,
-    /// Peak gather memory after which the pass is split into a tile.
+    /// Peak gather memory (`gather::peak_bytes_for`) a tile may reach.
     pub budget_bytes: usize,
     /// Whether next-event estimates are kept per light (the film has light layers).
     pub light_layers: bool,
 }
 
-/// Runs the camera pass of `job.pass` from row `job.first_row` on, until building the gather
-/// structure would need more than `job.budget_bytes` at its peak (at least one batch of rows).
-/// Rows are independent work items merged in row order (so are their throughput tables: indices
-/// do not depend on the thread count). Returns the output and the first row not traced, or None
-/// when `stop` was set (checked before every pixel: one row can hold 32768 pixels of 4096
-/// samples each, minutes of work).
+/// Why a camera pass gave no tile.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Halt {
+    /// `stop` was set.
+    Stopped,
+    /// One row of camera paths alone needs more gather memory than the budget.
+    OverBudget(OverBudget),
+}
+
+/// A row of camera paths whose gather records alone exceed the gather budget: the pass cannot
+/// be rendered within it (the estimate before rendering refuses most such settings; this is
+/// the bound when the paths leave more than the estimate).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "row {row} of pass {pass} alone left more than {} of gather records, over the gather budget \
+     of {} per pass (integrator.max_gather_bytes); raise integrator.q, lower \
+     integrator.camera_samples or camera.width, or raise integrator.max_gather_bytes",
+    super::memory::format_bytes(*.bytes as f64),
+    super::memory::format_bytes(*.budget as f64)
+)]
+pub struct OverBudget {
+    pub pass: u64,
+    pub row: u32,
+    /// What the row had left when it was stopped (a lower bound of its need).
+    pub bytes: usize,
+    pub budget: usize,
+}
+
+/// The gather bytes a batch's rows hold so far (the tile's own included), shared by the rows
+/// traced in parallel so that they stop once together they exceed the budget: memory stays
+/// bounded even when one camera path leaves millions of volumes.
+struct Held<'a> {
+    bytes: &'a AtomicUsize,
+    budget: usize,
+}
+
+/// Runs the camera pass of `job.pass` from row `job.first_row` on: the longest run of whole rows
+/// whose gather records, summed row by row, stay within `job.budget_bytes` at their peak
+/// (`gather::peak_bytes_for`). Which rows make a tile depends only on each row's own records,
+/// never on the thread count: rows are traced in parallel batches but their outputs are
+/// appended in row order, and a row that stopped because the batch together ran out of room is
+/// traced again alone, where it stops only if it cannot fit. Rows are independent work items
+/// merged in row order (so are their throughput tables: indices do not depend on the thread
+/// count). Returns the output and the first row not traced. `stop` is checked before every
+/// pixel (one row can hold 32768 pixels of 4096 samples each, minutes of work).
 pub fn camera_pass(
     scene: &Scene,
     integrator: &Integrator,
     job: &CameraJob,
     stop: &AtomicBool,
-) -> Option<(CameraOutput, u32)> {
+) -> Result<(CameraOutput, u32), Halt> {
     let h = scene.camera.resolution().1;
     let mut all = CameraOutput::new(scene.grid.n);
+    // Sum of the appended rows' peak bytes: an upper bound of `peak_bytes_for(&all)` (merging
+    // throughput tables only removes duplicates).
+    let mut held = 0usize;
     let mut row = job.first_row;
+    let mut batch = ROW_BATCH;
     while row < h {
         if stop.load(Ordering::Relaxed) {
-            return None;
+            return Err(Halt::Stopped);
         }
-        let end = (row + ROW_BATCH).min(h);
-        let rows: Vec<CameraOutput> = (row..end)
+        let end = (row + batch).min(h);
+        let counter = AtomicUsize::new(held);
+        let room = Held {
+            bytes: &counter,
+            budget: job.budget_bytes,
+        };
+        let rows: Vec<Option<CameraOutput>> = (row..end)
             .into_par_iter()
-            .map(|y| trace_row(scene, integrator, job, y, stop))
+            .map(|y| trace_row(scene, integrator, job, y, &room, stop))
             .collect();
         // A row cut short by `stop` is incomplete: the pass is abandoned.
         if stop.load(Ordering::Relaxed) {
-            return None;
+            return Err(Halt::Stopped);
         }
+        let alone = batch == 1;
+        batch = ROW_BATCH;
         for r in rows {
-            all.append(r);
-        }
-        row = end;
-        if gather::peak_bytes_for(&all) > job.budget_bytes {
-            break;
+            let fits = r
+                .as_ref()
+                .map(gather::peak_bytes_for)
+                .filter(|b| held + b <= job.budget_bytes);
+            match (r, fits) {
+                (Some(r), Some(b)) => {
+                    held += b;
+                    all.append(r);
+                    row += 1;
+                }
+                // Stopped for lack of room while other rows were in flight: alone it may fit.
+                (None, _) if !alone => {
+                    batch = 1;
+                    break;
+                }
+                // Does not fit after the rows before it: the tile ends here.
+                _ if row > job.first_row => return Ok((all, row)),
+                (r, _) => {
+                    let bytes = r.map_or(counter.load(Ordering::Relaxed), |r| {
+                        gather::peak_bytes_for(&r)
+                    });
+                    return Err(Halt::OverBudget(OverBudget {
+                        pass: job.pass,
+                        row,
+                        bytes,
+                        budget: job.budget_bytes,
+                    }));
+                }
+            }
         }
     }
-    Some((all, row))
+    Ok((all, row))
 }
 
-/// Traces the camera paths of row `y` of pass `pass`; stops early (an incomplete row) once
-/// `stop` is set.
+/// Traces the camera paths of row `y` of pass `pass`. None when `stop` was set or the gather
+/// bytes `room` counts (this row's included, checked after every camera path) exceed its
+/// budget.
 fn trace_row(
     scene: &Scene,
     integrator: &Integrator,
     job: &CameraJob,
     y: u32,
+    room: &Held,
     stop: &AtomicBool,
-) -> CameraOutput {
+) -> Option<CameraOutput> {
     let w = scene.camera.resolution().0;
     let mut out = CameraOutput::new(scene.grid.n);
     let mut rng = rng::stream(job.seed, job.pass, Domain::Camera, y as u64);
     let max_depth = integrator.settings.max_depth;
+    let mut counted = 0;
     for x in 0..w {
         if stop.load(Ordering::Relaxed) {
-            break;
+            return None;
         }
         let pixel = y * w + x;
         let mut nee = NeeSums::new(job.light_layers);
@@ -107,10 +184,16 @@ fn trace_row(
                 &mut rng,
             );
             out.paths += 1;
+            let now = gather::peak_bytes_for(&out);
+            let total = room.bytes.fetch_add(now - counted, Ordering::Relaxed) + now - counted;
+            counted = now;
+            if total > room.budget {
+                return None;
+            }
         }
         nee.push_into(&mut out, pixel);
     }
-    out
+    Some(out)
 }
 
 /// Adds the camera pass's directly seen radiance and next-event estimates into the pass buffer

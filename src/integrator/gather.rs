@@ -6,6 +6,8 @@
 //! stored in the BVH's leaf order, so the BVH needs no primitive index array and a query reads
 //! neighbouring records from neighbouring memory.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::{Vec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;
@@ -21,8 +23,11 @@ use super::record::{CameraOutput, SegmentRecord, SurfaceRecord, VolumeRecord};
 /// (8-wide nodes of 80 bytes, up to 3 primitives per leaf).
 pub const BVH_BYTES_PER_PRIM: usize = 16;
 /// Transient bytes per primitive while building: boxes (32), the binary BVH (2N nodes of 48),
-/// its index array and PLOC's sort keys.
-pub const BUILD_BYTES_PER_PRIM: usize = 160;
+/// its index array, PLOC's sort keys and cluster arrays, and the records' spare capacity. Set
+/// from the peak resident memory of fog-cube passes of 1.7, 5.1 and 10.3 million volumes in
+/// one piece (64 x 64 pixels, q = 0.003 to 0.0005): 268 bytes per volume at the peak, of which
+/// the record and the kept BVH are 28; rounded up.
+pub const BUILD_BYTES_PER_PRIM: usize = 256;
 
 /// Records of one camera pass and the acceleration structures over them.
 pub struct Gather {
@@ -112,6 +117,12 @@ pub fn peak_bytes_for(out: &CameraOutput) -> usize {
     bytes_for(out) + prims * BUILD_BYTES_PER_PRIM
 }
 
+/// Gathers of at least this many spheres and volumes are built on a watched thread
+/// (`Gather::from_output_until`): building takes about 2 us per volume on 2 cores (fog-cube,
+/// 1.7 to 10 million volumes), so this is a quarter second, above which an interrupt would
+/// wait noticeably; a gather at the default budget's limit takes half a minute.
+const WATCHED_BUILD: usize = 1 << 17;
+
 /// obvhs mishandles -0.0 direction components: use +0.0.
 fn positive_zero(d: Vec3) -> Vec3A {
     Vec3A::from(d).map(|c| if c == 0.0 { 0.0 } else { c })
@@ -176,6 +187,51 @@ impl Gather {
             table.into_data(),
             bins,
         )
+    }
+
+    /// `from_output`, abandoned (None) once `stop` is set. obvhs cannot be interrupted and a
+    /// gather at the budget's limit takes seconds to build, so a large one is built on a thread
+    /// of its own (in a pool of the caller's size) while this one watches `stop`; an abandoned
+    /// build finishes in the background and is dropped.
+    pub fn from_output_until(
+        estimator: &Estimator,
+        radii: Radii,
+        out: &mut CameraOutput,
+        stop: &AtomicBool,
+    ) -> Option<Self> {
+        if out.surfaces.len() + out.volumes.len() < WATCHED_BUILD {
+            return Some(Self::from_output(estimator, radii, out));
+        }
+        let records = CameraOutput {
+            surfaces: std::mem::take(&mut out.surfaces),
+            segments: std::mem::take(&mut out.segments),
+            volumes: std::mem::take(&mut out.volumes),
+            throughputs: std::mem::take(&mut out.throughputs),
+            ..CameraOutput::default()
+        };
+        let estimator = estimator.clone();
+        let threads = rayon::current_num_threads();
+        let build = std::thread::spawn(move || {
+            let build = move || {
+                let mut records = records;
+                Self::from_output(&estimator, radii, &mut records)
+            };
+            match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+                Ok(pool) => pool.install(build),
+                // No threads to spare: rayon's global pool builds it.
+                Err(_) => build(),
+            }
+        });
+        while !build.is_finished() {
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        match build.join() {
+            Ok(g) => Some(g),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
     }
 
     /// Throughput spectrum `i` (`bins` floats).

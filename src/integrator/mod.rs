@@ -29,9 +29,10 @@ pub mod settings;
 mod target;
 mod throughput;
 
+pub use camera_pass::OverBudget;
 pub use direct::Direct;
 pub use estimator::Estimator;
-pub use memory::MemoryEstimate;
+pub use memory::{MemoryEstimate, format_bytes};
 pub use pass::{Budget, Renderer, Stats};
 pub use radius::{Radii, RadiusSchedule, radius_for_pass};
 pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};

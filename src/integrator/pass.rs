@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;
 
 use super::auto::{Choice, Tuner, Work, pixel_totals};
-use super::camera_pass::{CameraJob, camera_pass, splat_direct};
+use super::camera_pass::{CameraJob, Halt, OverBudget, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
 use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
@@ -33,6 +33,9 @@ pub struct Stats {
     /// Paths traced from illuminance sensors.
     pub sensor_paths: u64,
     pub peak_gather_bytes: usize,
+    /// Peak bytes of building a tile's gather as the budget counts them
+    /// (`gather::peak_bytes_for`): at most `integrator.max_gather_bytes`.
+    pub peak_build_bytes: usize,
     pub camera_seconds: f64,
     pub build_seconds: f64,
     pub light_seconds: f64,
@@ -54,6 +57,9 @@ pub struct Renderer<'a> {
     tuner: Option<Tuner>,
     /// The scene's illuminance sensors.
     sensors: Vec<SensorPoint>,
+    /// Set when a pass was abandoned because one row of camera paths exceeded the gather
+    /// budget: every later pass would be too (see `over_budget`).
+    over_budget: Option<OverBudget>,
     pub stats: Stats,
 }
 
@@ -78,6 +84,7 @@ impl<'a> Renderer<'a> {
             ),
             sensors: sensor_points(scene),
             integrator,
+            over_budget: None,
             stats: Stats::default(),
         }
     }
@@ -113,6 +120,13 @@ impl<'a> Renderer<'a> {
         r.radii = r.integrator.radii(film.end());
         r.film = film;
         Ok(r)
+    }
+
+    /// Why passes stopped being added, other than `stop`: a row of camera paths that alone
+    /// needs more gather memory than `integrator.max_gather_bytes` (the render cannot go on
+    /// within the budget; `run_until` stops, `render_pass` adds nothing).
+    pub fn over_budget(&self) -> Option<&OverBudget> {
+        self.over_budget.as_ref()
     }
 
     /// The counters of the passes rendered so far.
@@ -252,16 +266,22 @@ impl<'a> Renderer<'a> {
                 budget_bytes: budget,
                 light_layers: buf.lights > 0,
             };
-            let (mut out, next) = camera_pass(scene, integrator, &job, stop)?;
-            // Building the gather cannot be interrupted: do not start it after a stop.
-            if stop.load(Ordering::Relaxed) {
-                return None;
-            }
+            let (mut out, next) = match camera_pass(scene, integrator, &job, stop) {
+                Ok(tile) => tile,
+                Err(Halt::Stopped) => return None,
+                Err(Halt::OverBudget(e)) => {
+                    self.over_budget = Some(e);
+                    return None;
+                }
+            };
             let t1 = Instant::now();
+            let peak = super::gather::peak_bytes_for(&out);
+            self.stats.peak_build_bytes = self.stats.peak_build_bytes.max(peak);
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
             work.volumes += out.volumes.len() as u64;
-            let gather = Gather::from_output(&integrator.estimator, self.radii, &mut out);
+            let gather =
+                Gather::from_output_until(&integrator.estimator, self.radii, &mut out, stop)?;
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
             let light = LightJob {

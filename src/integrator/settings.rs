@@ -52,7 +52,8 @@ pub enum DirectMode {
 
 /// Gather memory per pass when `max_gather_bytes = 0`: a fixed figure, not a share of the
 /// machine's memory, so that the same scene tiles its passes the same way (and so renders the
-/// same bits) on every machine. 4 GiB holds ~100 million integration spheres.
+/// same bits) on every machine. 4 GiB holds about 15 million integration volumes per tile at
+/// the peak of building their gather (`gather::BUILD_BYTES_PER_PRIM`).
 pub const DEFAULT_GATHER_BYTES: u64 = 4 << 30;
 
 /// Sensor paths per illuminance sensor per pass when `sensor_paths` is not given: a few

@@ -60,7 +60,7 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
         forward_rays: d.integrator.forward_rays,
         memory: crate::integrator::MemoryEstimate::new(
             &d.integrator,
-            d.camera.width as u64 * d.camera.height as u64,
+            (d.camera.width, d.camera.height),
             bins,
             !d.media.is_empty(),
         ),
@@ -155,7 +155,6 @@ fn mor_line(sigma_t: &crate::spectrum::Spectrum, grid: &crate::spectrum::Spectra
 
 impl fmt::Display for Summary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mib = |b: f64| b / (1024.0 * 1024.0);
         writeln!(f, "scene:        {}", self.file)?;
         writeln!(f, "image:        {} x {} pixels", self.width, self.height)?;
         write!(
@@ -186,16 +185,20 @@ impl fmt::Display for Summary {
             self.volume, self.mode, self.q, self.radius, self.forward_rays
         )?;
         let m = &self.memory;
+        let bytes = crate::integrator::format_bytes;
         writeln!(
             f,
-            "gather:       ~{:.0} integration volumes per pass (upper estimate), {:.1} MiB",
+            "gather:       ~{:.0} integration volumes per pass (upper estimate), {} at its peak \
+             in one piece; at most {} per tile (the budget), {} tiles per pass",
             m.gather_volumes,
-            mib(m.gather_bytes)
+            bytes(m.gather_bytes),
+            bytes(m.gather_held()),
+            m.tiles()
         )?;
-        writeln!(f, "film:         {:.1} MiB", mib(m.film_bytes))?;
+        writeln!(f, "film:         {}", bytes(m.film_bytes))?;
         for line in &self.media_report {
             writeln!(f, "{line}")?;
         }
-        writeln!(f, "memory:       ~{:.1} MiB in total", mib(m.total()))
+        writeln!(f, "memory:       ~{} in total", bytes(m.total()))
     }
 }

@@ -52,7 +52,26 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
         c.problems.push(p);
     }
     super::sensors::check_all(&mut c, &d.sensors, (d.camera.width, d.camera.height));
+    if c.problems.is_empty() {
+        gather_budget(&mut c, d);
+    }
     c.problems
+}
+
+/// A gather budget that cannot hold one camera path's records (a tiny q) is refused here, before
+/// anything is built or rendered, with the estimate (issue 31).
+fn gather_budget(c: &mut Checker, d: &SceneDesc) {
+    let bins = super::lines::scene_grid(d).map_or(d.film.bins, |g| g.n);
+    let size = (d.camera.width, d.camera.height);
+    let est =
+        crate::integrator::MemoryEstimate::new(&d.integrator, size, bins, !d.media.is_empty());
+    if let Some(m) = est.path_over_budget(&d.integrator) {
+        let key = match d.integrator.q.value() {
+            Some(_) => "integrator.q",
+            None => "integrator.max_gather_bytes",
+        };
+        c.fail(key, m);
+    }
 }
 
 fn film(c: &mut Checker, f: &FilmDesc) {

@@ -17,7 +17,7 @@ use super::outputs;
 use super::progress::Progress;
 use brume::film::{Film, FilmFile, FilmId, checkpoint, output};
 use brume::integrator::auto::Choice;
-use brume::integrator::{Budget, MemoryEstimate, Renderer};
+use brume::integrator::{Budget, MemoryEstimate, OverBudget, Renderer, format_bytes};
 use brume::scene::LoadedScene;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
@@ -47,8 +47,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let pool = super::thread_pool(args.threads)?;
 
     let start = Instant::now();
-    let (film, interrupted, auto) =
+    let (film, stopped, auto, over_budget) =
         pool.install(|| render(args, &loaded, &id, &plan, resumed, &interrupt))?;
+    let interrupted = stopped && over_budget.is_none();
     if let (Some(choice), true) = (&auto, args.verbose) {
         for line in &choice.report {
             println!("auto: {line}");
@@ -58,6 +59,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     report(args, &film, &id, interrupted, start, &saved, &cmd);
     if film.passes > 0 && plan.range.is_none() {
         film_files::report_extras(&film, args.quiet);
+    }
+    // The passes before it are saved above; the render cannot go on within the budget.
+    if let Some(e) = over_budget {
+        anyhow::bail!(e);
     }
     Ok(if interrupted {
         ExitCode::from(interrupt::INTERRUPTED)
@@ -98,8 +103,12 @@ fn read_film(path: &Path) -> anyhow::Result<FilmFile> {
     Ok(checkpoint::read(path)?)
 }
 
-/// Builds the scene and renders the plan; returns the film (whole passes only) and whether an
-/// interrupt stopped it (one during the build exits at once).
+/// What `render` returns: the film (whole passes only), whether it stopped early, the
+/// automatic settings' choice, and the row over the gather budget that stopped it, if one did.
+type Rendered = (Film, bool, Option<Choice>, Option<OverBudget>);
+
+/// Builds the scene and renders the plan; an interrupt stops it (one during the build exits
+/// at once), and so does a row of camera paths over the gather budget.
 fn render(
     args: &RenderArgs,
     loaded: &LoadedScene,
@@ -107,7 +116,7 @@ fn render(
     plan: &plan::Plan,
     resumed: Option<FilmFile>,
     interrupt: &interrupt::Interrupt,
-) -> anyhow::Result<(Film, bool, Option<Choice>)> {
+) -> anyhow::Result<Rendered> {
     let (scene, warnings) = brume::scene::build_with_warnings(loaded)?;
     for w in &warnings {
         eprintln!("brume: warning: {w}");
@@ -176,7 +185,8 @@ fn render(
         );
     }
     let auto = renderer.auto_choice().cloned();
-    Ok((renderer.into_film(), interrupted, auto))
+    let over_budget = renderer.over_budget().cloned();
+    Ok((renderer.into_film(), interrupted, auto, over_budget))
 }
 
 /// What was written, and which film file holds the passes (to resume or merge from).
@@ -299,7 +309,8 @@ fn report(
     }
 }
 
-/// Refuses a render whose memory estimate exceeds the machine's memory, unless forced.
+/// Refuses a render whose memory estimate (`MemoryEstimate`, the figures `brume info` prints)
+/// exceeds the machine's memory, unless forced.
 fn check_memory(loaded: &brume::scene::LoadedScene, force: bool) -> anyhow::Result<()> {
     let Some(ram) = film_files::machine_memory() else {
         return Ok(());
@@ -309,27 +320,20 @@ fn check_memory(loaded: &brume::scene::LoadedScene, force: bool) -> anyhow::Resu
     let bins = loaded.grid()?.n;
     let est = MemoryEstimate::new(
         &desc.integrator,
-        desc.camera.width as u64 * desc.camera.height as u64,
+        (desc.camera.width, desc.camera.height),
         bins,
         !desc.media.is_empty(),
     );
-    let values = desc.camera.width as f64 * desc.camera.height as f64 * bins as f64;
-    // Film: three i128 sums; pass buffer: two f32 layers; final image: data, noise, layers.
-    let film = values * (3.0 * 16.0 + 2.0 * 4.0 + 4.0 * 4.0);
-    let gather = est.gather_bytes.min(desc.integrator.gather_budget() as f64);
-    let need = film + gather;
     let ram = ram as f64;
-    if need > ram && !force {
+    if est.total() > ram && !force {
         anyhow::bail!(
-            "the render needs about {:.1} GiB (film {:.1} GiB, gather {:.1} GiB) but the machine \
-             has {:.1} GiB; lower camera.width/height or film.bins, or pass --force",
-            need / GIB,
-            film / GIB,
-            gather / GIB,
-            ram / GIB
+            "the render needs about {} (film {}, gather {} per tile) but the machine has {}; \
+             lower camera.width/height or film.bins, or pass --force",
+            format_bytes(est.total()),
+            format_bytes(est.film_bytes),
+            format_bytes(est.gather_held()),
+            format_bytes(ram)
         );
     }
     Ok(())
 }
-
-const GIB: f64 = (1u64 << 30) as f64;

@@ -1,3 +1,4 @@
 //! Unit tests of the engine that need whole scenes.
 
 mod gather_bytes;
+mod tiles;
