@@ -87,8 +87,12 @@ fn tiny_study_end_to_end() {
         assert!(r.checkpoint.medium.is_some() && r.checkpoint.surface.is_some());
         assert!(r.checkpoint.fit.is_none());
     }
-    // Every run spends its budget: the last checkpoint is at or past 0.5 s, the one before
-    // it (if any) short of it.
+    // Every run spends its budget and no more (issue 31: whole passes ran a 4 s budget to
+    // 15.8 s): the last checkpoint is at 0.5 s, plus the moment it takes to abandon the pass
+    // in flight, unless its first pass alone is longer (then it is the only one, flagged). The
+    // checkpoints before it are short of 0.5 s; a run stopped inside a pass ends with a
+    // checkpoint of the same passes at the whole time spent.
+    let budget = Budget::wall(0.5);
     for v in [0, 2] {
         for run in 0..2 {
             let cps: Vec<_> = rows
@@ -97,12 +101,19 @@ fn tiny_study_end_to_end() {
                 .map(|r| r.checkpoint)
                 .collect();
             assert!(!cps.is_empty());
-            assert!(cps.last().unwrap().seconds >= 0.5);
-            if cps.len() > 1 {
-                assert!(cps[cps.len() - 2].seconds < 0.5);
+            let last = cps.last().unwrap();
+            assert!(last.seconds >= 0.5);
+            let e = brume::study::Elapsed {
+                wall: last.seconds,
+                cpu: last.cpu_seconds,
+            };
+            assert!(!budget.overrun(e) || cps.len() == 1, "{cps:?}");
+            for c in &cps[..cps.len() - 1] {
+                assert!(c.seconds < 0.5, "{cps:?}");
             }
             for (i, c) in cps.iter().enumerate() {
-                assert_eq!(c.passes, i as u64 + 1);
+                let stopped = i + 1 == cps.len() && i > 0 && c.passes == cps[i - 1].passes;
+                assert!(c.passes == i as u64 + 1 || stopped, "{cps:?}");
             }
         }
     }
@@ -133,6 +144,12 @@ fn tiny_study_end_to_end() {
     assert_eq!(s.invalid.len(), 2);
     for v in &s.variants {
         assert_eq!(v.runs, 2);
+        assert_eq!(
+            v.over_budget,
+            s.notes
+                .iter()
+                .any(|n| n.starts_with(&v.label) && n.contains("NOT at equal time"))
+        );
         assert!((v.efficiency - 1.0 / (v.mse * v.mean_seconds)).abs() <= 1e-9 * v.efficiency);
         assert!(v.medium_mse.is_some());
     }
@@ -159,6 +176,114 @@ fn tiny_study_end_to_end() {
     for p in &plots {
         assert!(p.exists(), "{}", p.display());
     }
+    // The reference's noise floor is drawn on the whole image's error plot (issue 31).
+    assert!(s.reference_noise_mse.is_some());
+    let svg = std::fs::read_to_string(dir.path().join("error-vs-time.svg")).unwrap();
+    assert!(
+        svg.contains("reference noise floor"),
+        "no floor on the error plot"
+    );
+}
+
+/// Issue 31 item 15: `--vary integrator.q=0.5,abc` found the bad value only after the
+/// reference render. Every variant is checked first: a study whose variants are all refused
+/// fails before it renders anything (no reference written), and a refused value among good
+/// ones is reported before the reference is rendered.
+#[test]
+fn variants_are_checked_before_any_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("tiny.toml"), SCENE).unwrap();
+    let t0 = std::time::Instant::now();
+    let out = brume(
+        &[
+            "study",
+            "tiny.toml",
+            "--vary",
+            "integrator.q=abc,-1",
+            "--time",
+            "0.2",
+            "--reference-time",
+            "30",
+            "-o",
+            "bad",
+            "-q",
+        ],
+        d,
+    );
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("integrator.q") && err.contains("no valid variant"),
+        "{err}"
+    );
+    assert!(
+        !d.join("bad/reference.bin").exists(),
+        "the reference was rendered"
+    );
+    assert!(
+        t0.elapsed().as_secs_f64() < 25.0,
+        "a 30 s reference was rendered first"
+    );
+
+    let cfg = StudyConfig {
+        scene: d.join("tiny.toml"),
+        sets: vec![],
+        variants: expand(&[parse_vary("integrator.q=0.5,abc").unwrap()]),
+        budget: Budget::wall(0.2),
+        runs: 1,
+        seed: 0,
+        fit_scale: false,
+    };
+    let invalid = brume::study::check_variants(&cfg).unwrap();
+    assert_eq!(invalid.len(), 1);
+    assert_eq!(invalid[0].0, 1);
+    assert!(invalid[0].1.contains("integrator.q"), "{invalid:?}");
+}
+
+/// Issue 31: the study's images are written with one exposure, so that they compare. With a
+/// metered ("auto") exposure, a variant lit 4x as brightly as the reference comes out brighter,
+/// where metering each image would have shown both alike.
+#[test]
+fn study_images_share_one_exposure() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("tiny.toml"), SCENE).unwrap();
+    let out = brume(
+        &[
+            "study",
+            "tiny.toml",
+            "--set",
+            "film.exposure=auto",
+            "--vary",
+            "lights.0.irradiance=250,1000",
+            "--time",
+            "0.2",
+            "--runs",
+            "1",
+            "--reference-time",
+            "0.5",
+            "-o",
+            "exp",
+            "-q",
+        ],
+        d,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mean = |name: &str| {
+        let img = image::open(d.join("exp").join(name)).unwrap().to_rgb8();
+        let n = img.pixels().len() as f64;
+        img.pixels().map(|p| p.0[1] as f64).sum::<f64>() / n
+    };
+    let (dim, bright) = (mean("irradiance-250.png"), mean("irradiance-1000.png"));
+    assert!(
+        bright > dim + 30.0,
+        "dim {dim}, bright {bright}: metered apart"
+    );
 }
 
 fn brume(args: &[&str], cwd: &Path) -> std::process::Output {

@@ -80,15 +80,34 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
             img.height
         );
     };
+    if m.non_finite > 0 {
+        eprintln!(
+            "brume: warning: {}: {} of the region's {} pixels are NaN or infinite (in Y or its \
+             standard error): left out of the statistics",
+            args.image.display(),
+            m.non_finite,
+            m.non_finite + m.pixels
+        );
+    }
+    // With no finite pixel there is nothing to report: a NaN printed with success would be
+    // read as an answer.
+    anyhow::ensure!(
+        m.pixels > 0,
+        "{}: every pixel of region {:?} is NaN or infinite: no statistics",
+        args.image.display(),
+        region
+    );
     let (what, to_cd) = units(&img);
     if args.json {
         let v = json!({
             "image": args.image,
             "region": region,
             "pixels": m.pixels,
+            "non_finite_pixels": m.non_finite,
             "units": what,
             "mean": m.mean,
             "std_error": m.std_error,
+            "std_error_is_lower_bound": m.pixels > 1,
             "luminance_cd_m2": to_cd.map(|k| m.mean * k),
             "luminance_std_error_cd_m2": to_cd.zip(m.std_error).map(|(k, e)| e * k),
         });
@@ -101,8 +120,10 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
     println!("mean        {:.6}", m.mean);
     match m.std_error {
         Some(e) if m.pixels > 1 => println!(
-            "std error   {e:.6}  (from the noise layer, pixels taken as independent; a \
-             luminance sensor gives the exact error of a region)"
+            "std error   {e:.6}  LOWER BOUND: the noise layer with the pixels taken as \
+             independent, but the pixels of a pass share its forward rays, so the error of \
+             their mean can be several times larger (8x measured); a luminance sensor on the \
+             region ([[sensors]]) gives its exact error"
         ),
         Some(e) => println!("std error   {e:.6}  (from the noise layer)"),
         None => {

@@ -136,6 +136,12 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         seed: args.seed,
         fit_scale: args.fit_scale,
     };
+    // Every variant is loaded and built before anything renders, so that a value the scene
+    // refuses is reported now, not after the reference.
+    let early = study::check_variants(&cfg)?;
+    for (i, message) in &early {
+        eprintln!("brume: variant {} skipped: {message}", variants[*i].label);
+    }
     let per_run = budget.wall.or(budget.cpu).unwrap_or(5.0);
     let ref_time = args.reference_time.unwrap_or(10.0 * per_run);
     // Progress: the reference in tenths of a second, each run in thousandths of its budget.
@@ -153,10 +159,21 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
         cat: opts.cat,
         grid,
     };
+    // One exposure for every image the study writes, so that they compare: the scene's
+    // stops, or when it meters, the reference's metered stops (else the first variant's).
+    let mut display = Display::new(opts.clone());
     let (reference, ref_name) =
-        pool.install(|| reference(args, ref_time, &ref_opts, &opts, &mut progress))?;
-    let (rows, invalid) =
-        pool.install(|| run_variants(args, &cfg, &reference, &opts, ref_units, &mut progress))?;
+        pool.install(|| reference(args, ref_time, &ref_opts, &mut display, &mut progress))?;
+    let (rows, invalid) = pool.install(|| {
+        run_variants(
+            args,
+            &cfg,
+            &reference,
+            &mut display,
+            ref_units,
+            &mut progress,
+        )
+    })?;
     progress.finish();
     let summary = study::summarise(&cfg, &reference, &ref_name, &rows, &invalid);
     let plots = write_results(&args.dir, &variants, &rows, &summary)?;
@@ -164,12 +181,38 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The display options of the study's images: the film's, with the exposure fixed by the first
+/// image they are asked for (a metered exposure is measured once, on the reference when it has
+/// a spectral image, and then shared: images at one exposure compare).
+struct Display {
+    opts: output::OutputOptions,
+    fixed: bool,
+}
+
+impl Display {
+    fn new(opts: output::OutputOptions) -> Self {
+        Self { opts, fixed: false }
+    }
+
+    /// The options, their exposure measured on `img` if it is not fixed yet.
+    fn fix(
+        &mut self,
+        img: &brume::film::SpectralImage,
+    ) -> Result<&output::OutputOptions, output::OutputError> {
+        if !self.fixed {
+            self.opts = output::with_exposure_of(&self.opts, img)?;
+            self.fixed = true;
+        }
+        Ok(&self.opts)
+    }
+}
+
 /// The reference given with --reference, or one rendered (and saved) for the study.
 fn reference(
     args: &StudyArgs,
     ref_time: f64,
     ref_opts: &ReferenceOptions,
-    opts: &output::OutputOptions,
+    display: &mut Display,
     progress: &mut Progress,
 ) -> anyhow::Result<(Reference, String)> {
     let is_exr = |p: &Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
@@ -181,6 +224,9 @@ fn reference(
     }
     if let Some(p) = &args.reference {
         let r = Reference::open(p, ref_opts)?;
+        if let Some(img) = r.to_image() {
+            display.fix(&img)?;
+        }
         return Ok((r, p.display().to_string()));
     }
     let mut sets = args.scene.sets.clone();
@@ -195,7 +241,7 @@ fn reference(
     let path = args.dir.join("reference.bin");
     r.save(&path)?;
     if let Some(img) = r.to_image() {
-        output::write(&args.dir.join("reference.png"), &img, opts)?;
+        output::write(&args.dir.join("reference.png"), &img, display.fix(&img)?)?;
     }
     Ok((r, format!("{} ({})", path.display(), sets.join(" "))))
 }
@@ -205,7 +251,7 @@ fn run_variants(
     args: &StudyArgs,
     cfg: &StudyConfig,
     reference: &Reference,
-    opts: &output::OutputOptions,
+    display: &mut Display,
     offset: u64,
     progress: &mut Progress,
 ) -> anyhow::Result<(Vec<study::Row>, study::InvalidVariants)> {
@@ -229,15 +275,16 @@ fn run_variants(
             done_runs += 1;
             if run == 0 {
                 let p = args.dir.join(format!("{}.png", slug(&variant.label)));
-                if let Err(e) = output::write(&p, image, opts) {
+                let written = display
+                    .fix(image)
+                    .and_then(|opts| output::write(&p, image, opts));
+                if let Err(e) = written {
                     write_err.get_or_insert(e.into());
                 }
             }
         }
-        Event::Invalid { variant, message } => {
-            done_runs += args.runs as u64;
-            eprintln!("brume: variant {} skipped: {message}", variant.label);
-        }
+        // Already reported by `check_variants`, before the reference.
+        Event::Invalid { .. } => done_runs += args.runs as u64,
     })?;
     match write_err {
         Some(e) => Err(e),
@@ -292,8 +339,9 @@ fn print_summary(s: &study::Summary, dir: &Path, plots: usize) {
             (None, true) => format!(" {:>11}", "-"),
             (_, false) => String::new(),
         };
+        let over = if v.over_budget { "  OVER BUDGET" } else { "" };
         println!(
-            "{:<32} {:>6.1} {:>7.2} {:>7.2} {:>11.4e} {} {} {:>11.4e} {:>7.3} {:>11.3e}{k}",
+            "{:<32} {:>6.1} {:>7.2} {:>7.2} {:>11.4e} {} {} {:>11.4e} {:>7.3} {:>11.3e}{k}{over}",
             v.label,
             v.mean_passes,
             v.mean_seconds,

@@ -55,6 +55,20 @@ impl ViewTransform {
         }
     }
 
+    /// The scene value (after exposure) this view shows as white: 1 for `Clip`; for `Filmic`
+    /// the value its curve takes to 0.95 (its shoulder never quite reaches 1).
+    pub fn white(self) -> f32 {
+        match self {
+            ViewTransform::Clip => 1.0,
+            ViewTransform::Filmic => {
+                // v^n / (v^n + s^n) = w  <=>  v = s (w / (1 - w))^(1/n).
+                let s_n = GREY.powf(CONTRAST) * (1.0 / GREY - 1.0);
+                let w: f32 = 0.95;
+                (s_n * w / (1.0 - w)).powf(1.0 / CONTRAST)
+            }
+        }
+    }
+
     /// Display-linear -> 8-bit sRGB code value (round to nearest).
     pub fn encode_u8(v: f32) -> u8 {
         (srgb_encode(v.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8
@@ -64,6 +78,13 @@ impl ViewTransform {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_views_white_is_where_they_show_white() {
+        assert_eq!(ViewTransform::Clip.white(), 1.0);
+        let w = ViewTransform::Filmic.white();
+        assert!((filmic_channel(w) - 0.95).abs() < 1e-4, "{w}");
+    }
 
     /// The textbook piecewise formula, which palette's encoding must reproduce exactly (the
     /// PNG's 8-bit codes depend on it).

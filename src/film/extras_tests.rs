@@ -3,7 +3,7 @@
 
 use super::accum::{SQ_SCALE, SUM_SCALE};
 use super::checkpoint;
-use super::sensor::weights;
+use super::sensor::{RELIABLE_PASSES, weights};
 use super::*;
 use crate::spectrum::SpectralGrid;
 
@@ -114,11 +114,34 @@ fn sensors_read_their_pass_values() {
             "{se} vs {var}"
         );
         let [lo, hi] = r.ci95.expect("5 passes");
-        // Student's t, 4 degrees of freedom: 2.776.
-        assert!(((hi - lo) / (2.0 * se) - 2.776_445).abs() < 1e-4);
+        // Student's t, 4 degrees of freedom: 2.776 (when the interval stays above zero).
+        if r.value - 2.776_445 * se >= 0.0 {
+            assert!(((hi - lo) / (2.0 * se) - 2.776_445).abs() < 1e-4);
+        }
+        assert!(lo >= 0.0 && lo <= r.value && hi >= r.value, "{r:?}");
+        assert!(!r.ci95_reliable, "5 passes are below {RELIABLE_PASSES}");
     }
     assert_eq!(readings[1].unit, "lx");
     assert_eq!(readings[0].unit, "cd/m2");
+}
+
+/// Issue 31: a 2-pass illuminance printed [-0.45, 19.9] lx. The interval respects the sign and
+/// is marked unreliable below `RELIABLE_PASSES` passes.
+#[test]
+fn sensor_intervals_stay_positive_with_few_passes() {
+    // value 9.725 lx, standard error 0.8 at 2 passes: t(1) = 12.706 reaches -0.44.
+    let [lo, hi] = super::sensor::interval(9.725, 0.8, 2);
+    assert!(lo > 0.0 && hi > 9.725, "[{lo}, {hi}]");
+    // On the log scale: 9.725 x exp(+-12.706 x 0.8 / 9.725).
+    let h: f64 = 12.706_2 * 0.8 / 9.725;
+    assert!((lo / (9.725 * (-h).exp()) - 1.0).abs() < 1e-4, "{lo}");
+    assert!((hi / (9.725 * h.exp()) - 1.0).abs() < 1e-4, "{hi}");
+    // Many passes, small error: the usual symmetric interval (t(39) = 2.0227).
+    let [lo, hi] = super::sensor::interval(16.03, 0.19, 40);
+    assert!((lo - (16.03 - 2.022_69 * 0.19)).abs() < 1e-4, "{lo}");
+    assert!((hi - (16.03 + 2.022_69 * 0.19)).abs() < 1e-4, "{hi}");
+    // A zero reading stays [0, t se].
+    assert_eq!(super::sensor::interval(0.0, 0.0, 3), [0.0, 0.0]);
 }
 
 #[test]

@@ -21,4 +21,4 @@ pub use identity::{Difference, FilmId, IdentityError, Mismatch, PER_RUN_KEYS, Sa
 pub use image::SpectralImage;
 pub use layer::{LAYERS, Layer};
 pub use pass::PassBuffer;
-pub use sensor::{FilmExtras, Sensor, SensorKind, SensorReading};
+pub use sensor::{FilmExtras, RELIABLE_PASSES, Sensor, SensorKind, SensorReading};

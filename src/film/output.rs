@@ -17,7 +17,7 @@ use crate::colour::{Cat, ColourSpace, FilmToRgb, Observer, ViewTransform};
 
 use super::SpectralImage;
 
-pub use exposure::{Exposure, Units, metered_stops};
+pub use exposure::{Exposure, Units, metered_stops, protected_stops};
 pub use exr::{UNITS_ATTRIBUTE, spectral_channel_name};
 
 #[derive(Clone, Debug, Default)]
@@ -88,6 +88,24 @@ pub fn write(path: &Path, img: &SpectralImage, opts: &OutputOptions) -> Result<(
         .map_err(std::io::Error::other)
     })
     .map_err(|e| werr(e.to_string()))
+}
+
+/// `opts` with its exposure fixed to the stops it gives `img` (a metered exposure measured on
+/// `img`), so that other images written with the result share `img`'s exposure and compare.
+pub fn with_exposure_of(
+    opts: &OutputOptions,
+    img: &SpectralImage,
+) -> Result<OutputOptions, OutputError> {
+    let conv =
+        FilmToRgb::new(ColourSpace::Srgb, opts.observer, &img.grid, opts.cat).map_err(|e| {
+            OutputError::Write {
+                path: PathBuf::new(),
+                message: e.to_string(),
+            }
+        })?;
+    let mut out = opts.clone();
+    out.exposure = Exposure::Stops(opts.exposure.stops(img, &conv, opts.view.white()));
+    Ok(out)
 }
 
 /// Converts every pixel of `data` (the image's layout) to RGB in `space`.

@@ -85,8 +85,10 @@ pub struct SensorReading {
     pub value: f64,
     /// Standard error of the mean, from the spread of the per-pass values (None below 2 passes).
     pub std_error: Option<f64>,
-    /// 95 % confidence interval of the mean (Student's t with passes - 1 degrees of freedom).
+    /// 95 % confidence interval of the mean (see [`interval`]): never below zero.
     pub ci95: Option<[f64; 2]>,
+    /// Whether the interval can be trusted: false below [`RELIABLE_PASSES`] passes.
+    pub ci95_reliable: bool,
     /// Mean spectral value per bin (`spectral_unit`), bin centres in `wavelengths` (nm).
     pub spectral_unit: &'static str,
     pub wavelengths: Vec<f64>,
@@ -126,6 +128,29 @@ pub(super) fn region_mean(
     out.iter_mut().for_each(|v| *v /= count);
 }
 
+/// Passes below which a sensor's interval is unreliable. Gathered light makes per-pass values
+/// skewed (a few forward rays carry much of a pass; docs/study.md, "Strong forward
+/// scattering"), so the spread of a few passes underestimates the error and Student's t, exact
+/// only for normal values, cannot repair that.
+pub const RELIABLE_PASSES: u64 = 10;
+
+/// The 95 % interval of a non-negative mean `value` with standard error `se` over `passes`
+/// passes: Student's t with passes - 1 degrees of freedom, `value ± t se`; when that reaches
+/// below zero (few passes, or a heavy tail: a 2-pass illuminance printed [-0.45, 19.9] lx),
+/// the same interval taken on the logarithm (delta method: `value x exp(± t se / value)`),
+/// which respects the sign and is wide on the high side, where a skewed mean's error lies.
+pub fn interval(value: f64, se: f64, passes: u64) -> [f64; 2] {
+    let t = StudentsT::new(0.0, 1.0, passes.saturating_sub(1).max(1) as f64)
+        .map(|d| d.inverse_cdf(0.975))
+        .unwrap_or(1.959_964);
+    let (lo, hi) = (value - t * se, value + t * se);
+    if lo >= 0.0 || value <= 0.0 {
+        return [lo.max(0.0), hi];
+    }
+    let h = t * se / value;
+    [value * (-h).exp(), value * h.exp()]
+}
+
 /// The reading of a sensor from its sums (fixed point at `sum_scale` and `sq_scale`).
 pub(super) fn reading(
     sensor: &Sensor,
@@ -142,10 +167,7 @@ pub(super) fn reading(
         let mean_sq = sq as f64 / sq_scale / p;
         let var = ((mean_sq - value * value) * p / (p - 1.0)).max(0.0);
         let se = (var / p).sqrt();
-        let t = StudentsT::new(0.0, 1.0, p - 1.0)
-            .map(|d| d.inverse_cdf(0.975))
-            .unwrap_or(1.959_964);
-        (Some(se), Some([value - t * se, value + t * se]))
+        (Some(se), Some(interval(value, se, passes)))
     } else {
         (None, None)
     };
@@ -157,6 +179,7 @@ pub(super) fn reading(
         value,
         std_error,
         ci95,
+        ci95_reliable: passes >= RELIABLE_PASSES,
         spectral_unit: sensor.kind.spectral_unit(),
         wavelengths: grid.centres(),
         spectrum,

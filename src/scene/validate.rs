@@ -98,7 +98,7 @@ fn film(c: &mut Checker, f: &FilmDesc) {
     if f.lambda_max <= f.lambda_min {
         c.fail("film.lambda_max", "must be greater than film.lambda_min");
     }
-    if let Exposure::Stops(e) = f.exposure {
+    if let Some(Exposure::Stops(e)) = f.exposure {
         c.range(
             "film.exposure",
             e as f64,

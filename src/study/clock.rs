@@ -6,6 +6,8 @@
 //! counted only while passes render. On a loaded machine it is steadier than wall time: waiting
 //! for a core is not counted, though cache and memory contention still are.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use serde::Serialize;
 
 use super::StudyError;
@@ -106,10 +108,103 @@ impl Budget {
         wall || cpu || (self.wall.is_none() && self.cpu.is_none())
     }
 
+    /// What is left of the budget after `e` (a budget that is already spent stops at once).
+    pub fn left(&self, e: Elapsed) -> Budget {
+        Budget {
+            wall: self.wall.map(|w| w - e.wall),
+            cpu: self.cpu.map(|c| c - e.cpu),
+        }
+    }
+
+    /// Whether a run that took `e` went over the budget by more than the time it takes to
+    /// abandon a pass in flight (a few per cent, or 0.1 s): only a first pass longer than the
+    /// budget does that, as a run needs one whole pass for an image.
+    pub fn overrun(&self, e: Elapsed) -> bool {
+        let over = |b: Option<f64>, t: f64| b.is_some_and(|b| t > b * 1.05 + 0.1);
+        over(self.wall, e.wall) || over(self.cpu, e.cpu)
+    }
+
     /// Fraction of the budget spent (the larger of the two), in [0, 1].
     pub fn fraction(&self, e: Elapsed) -> f64 {
         let f = |b: Option<f64>, t: f64| b.map_or(0.0, |b| if t.is_finite() { t / b } else { 0.0 });
         f(self.wall, e.wall).max(f(self.cpu, e.cpu)).clamp(0.0, 1.0)
+    }
+}
+
+/// How a pass of [`run_budgeted`] ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PassEnd {
+    /// The pass is whole and in the film.
+    Done,
+    /// The budget ran out inside the pass: it was abandoned (the film is as before it).
+    Stopped,
+    /// The pass could not be rendered (not for lack of time).
+    Failed,
+}
+
+/// Renders passes (`pass(stop)` returns whether the pass completed) until `budget` is spent,
+/// calling `each(elapsed, last)` after every pass. Equal time means equal time: from the second
+/// pass on, a watchdog sets `stop` as soon as the budget runs out, so the pass in flight is
+/// abandoned and the run ends at its budget (its last call then sees the film of the passes
+/// completed, with the whole time spent). The first pass always completes, as a run needs an
+/// image: a first pass longer than the budget is the only way over it ([`Budget::overrun`]).
+/// Returns the time spent and how the last pass ended.
+pub(crate) fn run_budgeted(
+    budget: Budget,
+    mut pass: impl FnMut(&AtomicBool) -> bool,
+    mut each: impl FnMut(Elapsed, bool),
+) -> (Elapsed, PassEnd) {
+    let mut spent = Elapsed::default();
+    let mut first = true;
+    loop {
+        let stop = AtomicBool::new(false);
+        let done = AtomicBool::new(false);
+        let left = budget.left(spent);
+        let (completed, t) = std::thread::scope(|s| {
+            if !first {
+                s.spawn(|| watch(left, &stop, &done));
+            }
+            let mut completed = false;
+            let t = timed(|| completed = pass(&stop));
+            done.store(true, Ordering::SeqCst);
+            (completed, t)
+        });
+        first = false;
+        spent.wall += t.wall;
+        spent.cpu += t.cpu;
+        let end = match (completed, stop.load(Ordering::SeqCst)) {
+            (true, _) => PassEnd::Done,
+            (false, true) => PassEnd::Stopped,
+            (false, false) => PassEnd::Failed,
+        };
+        let last = end != PassEnd::Done || budget.spent(spent);
+        if end != PassEnd::Failed {
+            each(spent, last);
+        }
+        if last {
+            return (spent, end);
+        }
+    }
+}
+
+/// Sets `stop` once `left` is spent, measured from now, unless `done` is set first.
+fn watch(left: Budget, stop: &AtomicBool, done: &AtomicBool) {
+    let t0 = std::time::Instant::now();
+    let c0 = process_cpu_seconds();
+    while !done.load(Ordering::SeqCst) {
+        let cpu = match (c0, process_cpu_seconds()) {
+            (Some(a), Some(b)) => b - a,
+            _ => f64::NAN,
+        };
+        let e = Elapsed {
+            wall: t0.elapsed().as_secs_f64(),
+            cpu,
+        };
+        if left.spent(e) {
+            stop.store(true, Ordering::SeqCst);
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
     }
 }
 
@@ -187,5 +282,52 @@ mod tests {
         assert!(Budget::wall(-1.0).check().is_err());
         assert!(Budget::cpu(f64::NAN).check().is_err());
         assert!(Budget::wall(0.5).check().is_ok());
+        assert!(!Budget::wall(4.0).overrun(e(4.15, 9.0)));
+        assert!(Budget::wall(4.0).overrun(e(15.8, 9.0)));
+        assert!(Budget::cpu(4.0).overrun(e(1.0, 15.8)));
+    }
+
+    /// A pass of `seconds` that gives up when `stop` is set (as `render_pass_until` does).
+    fn sleepy_pass(seconds: f64) -> impl FnMut(&AtomicBool) -> bool {
+        move |stop| {
+            let t0 = std::time::Instant::now();
+            while t0.elapsed().as_secs_f64() < seconds {
+                if stop.load(Ordering::SeqCst) {
+                    return false;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            true
+        }
+    }
+
+    #[test]
+    fn a_run_stops_inside_a_pass_at_its_budget() {
+        // Passes of 0.4 s against a 0.5 s budget: whole passes ran to 0.8 s (issue 31: 4 s
+        // budgets ran to 15.8 s). Now the second pass is abandoned at 0.5 s; the last call
+        // sees the one whole pass with the whole time spent.
+        let mut calls = Vec::new();
+        let (spent, end) = run_budgeted(Budget::wall(0.5), sleepy_pass(0.4), |e, last| {
+            calls.push((e.wall, last))
+        });
+        assert_eq!(end, PassEnd::Stopped);
+        assert!(spent.wall >= 0.5 && spent.wall < 0.7, "{spent:?}");
+        assert_eq!(calls.len(), 2, "{calls:?}");
+        assert!(!calls[0].1 && calls[1].1, "{calls:?}");
+        assert!(!Budget::wall(0.5).overrun(spent));
+    }
+
+    #[test]
+    fn a_first_pass_longer_than_the_budget_completes_and_is_an_overrun() {
+        let mut calls = 0;
+        let (spent, end) = run_budgeted(Budget::wall(0.1), sleepy_pass(0.4), |_, last| {
+            calls += 1;
+            assert!(last);
+        });
+        assert_eq!((end, calls), (PassEnd::Done, 1));
+        assert!(Budget::wall(0.1).overrun(spent), "{spent:?}");
+        // A pass that fails for another reason than the budget ends the run without a call.
+        let (_, end) = run_budgeted(Budget::wall(1.0), |_| false, |_, _| panic!("no pass"));
+        assert_eq!(end, PassEnd::Failed);
     }
 }

@@ -18,7 +18,7 @@ mod ticks;
 mod variants;
 
 pub use best::{Best, Estimate, Measure};
-pub use clock::{Budget, Clock, Elapsed, process_cpu_seconds};
+pub use clock::{Budget, Clock, Elapsed, PassEnd, process_cpu_seconds};
 pub use csv::{CSV_HEADER, write_csv};
 pub use measure::Checkpoint;
 pub use metrics::{
@@ -27,7 +27,10 @@ pub use metrics::{
 };
 pub use plot::write_plots;
 pub use reference::{Layers, REFERENCE_MAGIC, Reference, ReferenceOptions, Values, space_name};
-pub use run::{Event, InvalidVariants, Row, StudyConfig, render_for, render_reference, run_study};
+pub use run::{
+    Event, InvalidVariants, Row, StudyConfig, check_variants, render_for, render_reference,
+    run_study,
+};
 pub use summary::{Summary, VariantSummary, summarise, summarise_variants};
 pub use ticks::{Ticks, format_sig, labels, linear_ticks, log_ticks};
 pub use variants::{Variant, Vary, expand, parse_vary};

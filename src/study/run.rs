@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::StudyError;
-use super::clock::{Budget, Elapsed, timed};
+use super::clock::{Budget, Elapsed, PassEnd, run_budgeted};
 use super::measure::{Checkpoint, Projection, measure};
 use super::reference::Reference;
 use super::variants::Variant;
@@ -61,28 +61,72 @@ pub enum Event<'a> {
 }
 
 /// Renders `sets` until `budget` is spent (at least one pass) with `seed`, calling `each` after
-/// every pass with the renderer and the rendering time so far.
+/// every pass with the renderer, the rendering time so far and whether it is the run's last
+/// call. The pass in flight when the budget runs out is abandoned (see
+/// [`run_budgeted`](super::clock::run_budgeted)): the last call then sees the film of the whole
+/// passes with the whole time spent.
 pub fn render_for(
     scene_file: &Path,
     sets: &[String],
     budget: Budget,
     seed: u64,
-    mut each: impl FnMut(&Renderer, Elapsed),
+    mut each: impl FnMut(&Renderer, Elapsed, bool),
 ) -> Result<(), StudyError> {
     let loaded = load(scene_file, sets)?;
     let scene = build(&loaded)?;
     let integrator = build_integrator(&loaded, &scene)?;
-    let mut r = Renderer::new(&scene, integrator, seed);
-    let mut spent = Elapsed::default();
-    loop {
-        let pass = timed(|| r.render_pass());
-        spent.wall += pass.wall;
-        spent.cpu += pass.cpu;
-        each(&r, spent);
-        if budget.spent(spent) {
-            return Ok(());
-        }
+    let r = std::cell::RefCell::new(Renderer::new(&scene, integrator, seed));
+    let (_, end) = run_budgeted(
+        budget,
+        |stop| r.borrow_mut().render_pass_until(stop),
+        |elapsed, last| each(&r.borrow(), elapsed, last),
+    );
+    match end {
+        PassEnd::Done | PassEnd::Stopped => Ok(()),
+        PassEnd::Failed => Err(StudyError::NoVariant(format!(
+            "{}: a pass could not be rendered (its automatic settings could not be applied)",
+            scene_file.display()
+        ))),
     }
+}
+
+/// The sets of variant `v`: the common ones, then its own.
+fn variant_sets(cfg: &StudyConfig, v: &Variant) -> Vec<String> {
+    let mut sets = cfg.sets.clone();
+    sets.extend(v.sets.iter().cloned());
+    sets
+}
+
+/// Loads and builds `sets` as a run would; the message says why the scene refuses them.
+fn check(
+    scene_file: &Path,
+    sets: &[String],
+) -> Result<(crate::scene::LoadedScene, crate::scene::Scene), String> {
+    let loaded = load(scene_file, sets).map_err(|e| e.to_string())?;
+    let scene = build(&loaded).map_err(|e| e.to_string())?;
+    build_integrator(&loaded, &scene).map_err(|e| e.to_string())?;
+    Ok((loaded, scene))
+}
+
+/// Every variant the scene refuses (index, message), found by loading and building each as a
+/// run would, before anything renders: a typo in a `--vary` value is reported at once, not
+/// after the reference. Fails when no variant is valid.
+pub fn check_variants(cfg: &StudyConfig) -> Result<InvalidVariants, StudyError> {
+    let invalid: InvalidVariants = cfg
+        .variants
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| {
+            check(&cfg.scene, &variant_sets(cfg, v))
+                .err()
+                .map(|m| (i, m))
+        })
+        .collect();
+    if invalid.len() == cfg.variants.len() {
+        let msgs: Vec<String> = invalid.iter().map(|(_, m)| m.clone()).collect();
+        return Err(StudyError::NoVariant(msgs.join("; ")));
+    }
+    Ok(invalid)
 }
 
 /// Loads and builds a variant as a run would (so that any value the scene refuses, such as an
@@ -94,9 +138,7 @@ fn prepare(
     sets: &[String],
     reference: &Reference,
 ) -> Result<Result<Projection, StudyError>, String> {
-    let loaded = load(scene_file, sets).map_err(|e| e.to_string())?;
-    let scene = build(&loaded).map_err(|e| e.to_string())?;
-    build_integrator(&loaded, &scene).map_err(|e| e.to_string())?;
+    let (loaded, scene) = check(scene_file, sets)?;
     let (w, h) = scene.camera.resolution();
     if w as usize != reference.width || h as usize != reference.height {
         return Ok(Err(StudyError::Mismatch {
@@ -119,8 +161,7 @@ pub fn run_study(
     let mut rows = Vec::new();
     let mut invalid = Vec::new();
     for (vi, variant) in cfg.variants.iter().enumerate() {
-        let mut sets = cfg.sets.clone();
-        sets.extend(variant.sets.iter().cloned());
+        let sets = variant_sets(cfg, variant);
         let projection = match prepare(&cfg.scene, &sets, reference) {
             Ok(p) => p?,
             Err(message) => {
@@ -135,7 +176,7 @@ pub fn run_study(
         for run in 0..cfg.runs {
             let mut failed = None;
             let seed = cfg.seed.wrapping_add(1 + run as u64);
-            render_for(&cfg.scene, &sets, cfg.budget, seed, |r, elapsed| {
+            render_for(&cfg.scene, &sets, cfg.budget, seed, |r, elapsed, last| {
                 if failed.is_some() {
                     return;
                 }
@@ -161,7 +202,7 @@ pub fn run_study(
                     elapsed,
                     fraction: cfg.budget.fraction(elapsed),
                 });
-                if cfg.budget.spent(elapsed) {
+                if last {
                     progress(Event::RunDone {
                         variant,
                         run,
@@ -192,11 +233,17 @@ pub fn render_reference(
     let budget = Budget::wall(seconds);
     budget.check()?;
     let mut out = None;
-    render_for(scene_file, sets, budget, seed ^ 0x005E_ED0F_BEEF, |r, t| {
-        progress(t.wall);
-        if budget.spent(t) {
-            out = Some(Reference::from_image(&r.image(), r.film().passes, t.wall));
-        }
-    })?;
+    render_for(
+        scene_file,
+        sets,
+        budget,
+        seed ^ 0x005E_ED0F_BEEF,
+        |r, t, last| {
+            progress(t.wall);
+            if last {
+                out = Some(Reference::from_image(&r.image(), r.film().passes, t.wall));
+            }
+        },
+    )?;
     out.ok_or_else(|| StudyError::NoVariant("reference rendered no pass".into()))
 }

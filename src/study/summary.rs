@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::best::{Best, Estimate, Measure, rank};
-use super::clock::{Budget, Clock};
+use super::clock::{Budget, Clock, Elapsed};
 use super::measure::Checkpoint;
 use super::metrics::efficiency;
 use super::reference::Reference;
@@ -23,6 +23,11 @@ pub struct VariantSummary {
     pub mean_seconds: f64,
     /// Process CPU seconds of rendering, mean over runs.
     pub mean_cpu_seconds: f64,
+    /// The longest run's seconds on the study's clock.
+    pub max_seconds: f64,
+    /// Whether a run went over the budget ([`Budget::overrun`]): its first pass alone is longer
+    /// than the budget, so this variant is not at equal time.
+    pub over_budget: bool,
     pub mse: f64,
     /// Standard error of `mse` over runs (0 with one run).
     pub mse_se: f64,
@@ -83,17 +88,26 @@ pub struct Summary {
     pub notes: Vec<String>,
 }
 
-/// The last checkpoint of each run of variant `vi`.
+/// The last checkpoint of each run of variant `vi` (rows are in the order they were measured;
+/// a run stopped inside a pass ends with a row of the same passes at the whole time spent).
 fn finals(rows: &[Row], vi: usize) -> Vec<&Checkpoint> {
     let mut out: Vec<(u32, &Checkpoint)> = Vec::new();
     for r in rows.iter().filter(|r| r.variant == vi) {
         match out.iter_mut().find(|(run, _)| *run == r.run) {
-            Some(f) if r.checkpoint.passes > f.1.passes => f.1 = &r.checkpoint,
-            Some(_) => {}
+            Some(f) => f.1 = &r.checkpoint,
             None => out.push((r.run, &r.checkpoint)),
         }
     }
     out.into_iter().map(|(_, c)| c).collect()
+}
+
+/// The budget on `clock` (NaN when that clock has none).
+fn budget_on(b: Budget, clock: Clock) -> f64 {
+    match clock {
+        Clock::Wall => b.wall,
+        Clock::Cpu => b.cpu,
+    }
+    .unwrap_or(f64::NAN)
 }
 
 /// Seconds of a checkpoint on `clock`.
@@ -109,15 +123,23 @@ pub fn summarise_variants(
     variants: &[Variant],
     rows: &[Row],
     reference_noise_mse: Option<f64>,
-    clock: Clock,
+    budget: Budget,
 ) -> Vec<VariantSummary> {
+    let clock = budget.clock();
     let mut out: Vec<VariantSummary> = Vec::new();
     for (vi, v) in variants.iter().enumerate() {
         let finals = finals(rows, vi);
         if finals.is_empty() {
             continue;
         }
-        out.push(summarise_one(v, &finals, reference_noise_mse, clock));
+        let mut one = summarise_one(v, &finals, reference_noise_mse, clock);
+        one.over_budget = finals.iter().any(|c| {
+            budget.overrun(Elapsed {
+                wall: c.seconds,
+                cpu: c.cpu_seconds,
+            })
+        });
+        out.push(one);
     }
     if let Some(first) = out.first().map(|s| s.efficiency) {
         for s in &mut out {
@@ -166,6 +188,11 @@ fn summarise_one(
         mean_passes: mean(&|c| c.passes as f64),
         mean_seconds: mean(&|c| c.seconds),
         mean_cpu_seconds: mean(&|c| c.cpu_seconds),
+        max_seconds: finals
+            .iter()
+            .map(|c| seconds_on(c, clock))
+            .fold(0.0, f64::max),
+        over_budget: false,
         mse,
         mse_se,
         rmse: mse.sqrt(),
@@ -197,7 +224,7 @@ pub fn summarise(
 ) -> Summary {
     let clock = cfg.budget.clock();
     let noise = reference.noise_mse();
-    let variants = summarise_variants(&cfg.variants, rows, noise, clock);
+    let variants = summarise_variants(&cfg.variants, rows, noise, cfg.budget);
     let labelled: Vec<(String, &BTreeMap<Measure, Estimate>)> = variants
         .iter()
         .map(|v| (v.label.clone(), &v.efficiency_over_runs))
@@ -215,6 +242,17 @@ pub fn summarise(
              per-layer errors are not measured"
                 .into(),
         );
+    }
+    for v in variants.iter().filter(|v| v.over_budget) {
+        notes.push(format!(
+            "{} is NOT at equal time: a run took {:.2} {}, over the {:.2} s budget (its first \
+             pass alone is longer; a run needs one whole pass); raise --time or make its \
+             passes cheaper before comparing it",
+            v.label,
+            v.max_seconds,
+            clock.name(),
+            budget_on(cfg.budget, clock),
+        ));
     }
     if noise.is_none() {
         notes.push("the reference carries no standard error: its noise floor is unknown".into());

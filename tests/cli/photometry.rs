@@ -94,6 +94,11 @@ fn sensors_false_colour_and_probe() {
     let mean = p["luminance_cd_m2"].as_f64().expect("cd");
     assert!((mean / value - 1.0).abs() < 1e-3, "{mean} vs {value}");
     assert!(p["std_error"].as_f64().expect("noise") > 0.0);
+    // Pixels taken as independent: the region's error is only a lower bound (issue 31), and
+    // says so.
+    assert_eq!(p["std_error_is_lower_bound"], true, "{p}");
+    let (text, _) = run(&["probe", s(&exr), "--region", "2,2,6,6"]);
+    assert!(text.contains("LOWER BOUND"), "{text}");
     let (text, _) = run(&["probe", s(&exr), "--px", "3,3"]);
     assert!(text.contains("cd/m2 (photometric EXR)"), "{text}");
     let out = brume()
@@ -192,4 +197,71 @@ fn fog_given_by_visibility_has_that_optical_range() {
         !out.status.success() && err.contains("media.fog.sigma_s"),
         "{err}"
     );
+}
+
+/// Issue 31 item 14: `probe` over NaN or infinite pixels printed NaN with exit 0. Now they are
+/// counted and left out with a warning, and a region with no finite pixel is refused.
+#[test]
+fn probe_reports_non_finite_pixels() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("nan.exr");
+    // Row 0: NaN, +inf, then 1.0; row 1: all 1.0 (grey, so Y = 1).
+    exr::prelude::write_rgb_file(&path, 4, 2, |x, y| {
+        let v = match (x, y) {
+            (0, 0) => f32::NAN,
+            (1, 0) => f32::INFINITY,
+            _ => 1.0,
+        };
+        (v, v, v)
+    })
+    .expect("write exr");
+    let out = brume()
+        .args(["probe", s(&path), "--region", "0,0,4,2", "--json"])
+        .output()
+        .expect("run");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("2 of the region's 8 pixels are NaN or infinite"),
+        "{err}"
+    );
+    let p: serde_json::Value = serde_json::from_slice(&out.stdout).expect("probe json");
+    assert_eq!(p["pixels"], 6);
+    assert_eq!(p["non_finite_pixels"], 2);
+    assert!(
+        (p["mean"].as_f64().expect("a number") - 1.0).abs() < 1e-6,
+        "{p}"
+    );
+    for at in [["--px", "0,0"], ["--region", "0,0,2,1"]] {
+        let out = brume()
+            .args(["probe", s(&path), at[0], at[1]])
+            .output()
+            .expect("run");
+        assert!(!out.status.success(), "{at:?}: meaningless, yet exit 0");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("NaN or infinite: no statistics"), "{err}");
+        assert!(!String::from_utf8_lossy(&out.stdout).contains("NaN"));
+    }
+}
+
+/// Issue 31: with `film.units = "photometric"` and no exposure, the 159 cd/m² wall (albedo 0.5
+/// under 1000 lx) came out as PNG (7, 7, 7). A photometric film meters by default: the wall,
+/// the whole image, lands on middle grey (sRGB code 118).
+#[test]
+fn a_photometric_film_is_exposed_by_default() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = write_scene(dir.path(), SCENE);
+    let png = dir.path().join("wall.png");
+    run(&["render", s(&scene), "-o", s(&png), "--seed", "5", "-q"]);
+    let img = image::open(&png).expect("png").to_rgb8();
+    let c = img.get_pixel(4, 4).0;
+    for v in c {
+        assert!((100..=140).contains(&v), "{c:?}");
+    }
+    // An explicit exposure still rules: 0 stops shows the film's own values (dark).
+    let png0 = dir.path().join("wall0.png");
+    let set = "film.exposure=0";
+    run(&["render", s(&scene), "--set", set, "-o", s(&png0), "-q"]);
+    let c = image::open(&png0).expect("png").to_rgb8().get_pixel(4, 4).0;
+    assert!(c.iter().all(|v| *v < 20), "{c:?}");
 }

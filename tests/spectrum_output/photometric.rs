@@ -2,12 +2,14 @@
 //! exposure, and the false-colour map with its legend.
 
 use brume::colour::photometry::{self, luminance_scale};
-use brume::colour::{Observer, XyzWeights};
+use brume::colour::{Observer, ViewTransform, XyzWeights};
 use brume::film::SpectralImage;
 use brume::film::output::false_colour::{
     self, BACKGROUND, BAR_BOTTOM, BAR_TOP, BAR_W, BAR_X, INK, MIN_HEIGHT, PANEL,
 };
-use brume::film::output::{Exposure, OutputOptions, Units, metered_stops, probe, write};
+use brume::film::output::{
+    Exposure, OutputOptions, Units, metered_stops, probe, protected_stops, write,
+};
 use brume::spectrum::SpectralGrid;
 
 /// A horizontal ramp: pixel x has a constant spectrum of radiance `base * 10^(x / 8)`; noise
@@ -113,6 +115,45 @@ fn auto_exposure_maps_the_log_average_to_middle_grey() {
     assert_eq!("auto".parse::<Exposure>(), Ok(Exposure::Auto));
     assert_eq!("-1.5".parse::<Exposure>(), Ok(Exposure::Stops(-1.5)));
     assert!("bright".parse::<Exposure>().is_err());
+}
+
+/// Issue 31: `exposure = "auto"` clipped a white wall in a dark scene. A wall over 10 % of the
+/// image, 1000 times the rest: the log-average alone puts it 6.5 stops past middle grey, far
+/// past white; the protected exposure stops where the 99th percentile reaches the view's white.
+#[test]
+fn auto_exposure_protects_the_highlights() {
+    let g = SpectralGrid::new(16, 380.0, 780.0);
+    let conv = brume::colour::FilmToRgb::new(
+        brume::colour::ColourSpace::Srgb,
+        Observer::Cie1931,
+        &g,
+        Default::default(),
+    )
+    .expect("conv");
+    let mut img = SpectralImage::new(10, 10, g.clone());
+    for (p, px) in img.data.chunks_exact_mut(g.n).enumerate() {
+        px.fill(if p < 10 { 1.0 } else { 1e-3 });
+    }
+    let wall = conv.xyz.xyz(img.pixel(0, 0))[1];
+    let metered = metered_stops(&img, &conv);
+    assert!(wall * 2f64.powf(metered as f64) > 50.0, "{metered}");
+    for view in [ViewTransform::Clip, ViewTransform::Filmic] {
+        let white = view.white();
+        let stops = protected_stops(&img, &conv, white);
+        assert!(
+            (wall * 2f64.powf(stops as f64) / white as f64 - 1.0).abs() < 1e-4,
+            "{view:?}: {stops}"
+        );
+        assert_eq!(Exposure::Auto.stops(&img, &conv, white), stops);
+    }
+    // A uniform image is not held back: its log-average lands on middle grey.
+    let flat = ramp(4, 4, 1e-3);
+    let one = ramp(1, 4, 1e-3);
+    assert_eq!(
+        protected_stops(&one, &conv, 1.0),
+        metered_stops(&one, &conv)
+    );
+    assert!(protected_stops(&flat, &conv, 1.0) <= metered_stops(&flat, &conv));
 }
 
 /// Reads a PNG as RGB rows.

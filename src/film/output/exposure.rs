@@ -34,7 +34,8 @@ impl Units {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Exposure {
     Stops(f32),
-    /// The log-average luminance is mapped to middle grey (see [`metered_stops`]).
+    /// The log-average luminance is mapped to middle grey, unless that would push the
+    /// brightest 1 % past white (see [`protected_stops`]).
     Auto,
 }
 
@@ -45,11 +46,22 @@ impl Default for Exposure {
 }
 
 impl Exposure {
-    /// The stops to apply to `img`.
-    pub fn stops(self, img: &SpectralImage, conv: &FilmToRgb) -> f32 {
+    /// The stops to apply to `img` shown through a view whose white is scene value `white`
+    /// ([`crate::colour::ViewTransform::white`]).
+    pub fn stops(self, img: &SpectralImage, conv: &FilmToRgb, white: f32) -> f32 {
         match self {
             Exposure::Stops(s) => s,
-            Exposure::Auto => metered_stops(img, conv),
+            Exposure::Auto => protected_stops(img, conv, white),
+        }
+    }
+
+    /// The default of a film in `units`: 0 stops for radiometric films, whose values are in
+    /// the scene's own scale; `"auto"` for photometric ones, whose values are true luminances
+    /// (a 159 cd/m² grey wall is 0.002 in film units: black at 0 stops).
+    pub fn default_for(units: Units) -> Self {
+        match units {
+            Units::Radiometric => Exposure::Stops(0.0),
+            Units::Photometric => Exposure::Auto,
         }
     }
 }
@@ -109,10 +121,9 @@ const FLOOR: f64 = 1e-3;
 /// Where the log-average luminance lands (middle grey).
 const MIDDLE_GREY: f64 = 0.18;
 
-/// Metered exposure (stops): the log-average of the pixels' Y (Reinhard et al. 2002's key),
-/// each at least [`FLOOR`] times the 99th percentile, mapped to middle grey. 0 for a black
-/// image; within [-64, 64].
-pub fn metered_stops(img: &SpectralImage, conv: &FilmToRgb) -> f32 {
+/// The pixels' finite Y, sorted, and their 99th percentile (None for an image with no
+/// positive 99th percentile: black, or nothing finite).
+fn sorted_y(img: &SpectralImage, conv: &FilmToRgb) -> Option<(Vec<f64>, f64)> {
     let mut y: Vec<f64> = img
         .data
         .chunks_exact(img.grid.n)
@@ -120,14 +131,33 @@ pub fn metered_stops(img: &SpectralImage, conv: &FilmToRgb) -> f32 {
         .filter(|v| v.is_finite())
         .collect();
     if y.is_empty() {
-        return 0.0;
+        return None;
     }
     y.sort_by(f64::total_cmp);
     let p99 = y[((y.len() - 1) as f64 * 0.99) as usize];
-    if p99.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    (p99 > 0.0).then_some((y, p99))
+}
+
+/// Metered exposure (stops): the log-average of the pixels' Y (Reinhard et al. 2002's key),
+/// each at least [`FLOOR`] times the 99th percentile, mapped to middle grey. 0 for a black
+/// image; within [-64, 64].
+pub fn metered_stops(img: &SpectralImage, conv: &FilmToRgb) -> f32 {
+    let Some((y, p99)) = sorted_y(img, conv) else {
         return 0.0;
-    }
+    };
     let floor = p99 * FLOOR;
     let log_avg = (y.iter().map(|v| v.max(floor).ln()).sum::<f64>() / y.len() as f64).exp();
     ((MIDDLE_GREY / log_avg).log2() as f32).clamp(-64.0, 64.0)
+}
+
+/// `"auto"` exposure (stops): [`metered_stops`], with highlight protection: never more than
+/// puts the 99th percentile of Y at `white`, the scene value the view transform shows as white
+/// (so a white wall over more than 1 % of the image is not clipped, where the log-average of a
+/// dark foggy scene alone would push it far past white). 0 for a black image.
+pub fn protected_stops(img: &SpectralImage, conv: &FilmToRgb, white: f32) -> f32 {
+    let Some((_, p99)) = sorted_y(img, conv) else {
+        return 0.0;
+    };
+    let highlight = ((white as f64 / p99).log2() as f32).clamp(-64.0, 64.0);
+    metered_stops(img, conv).min(highlight)
 }

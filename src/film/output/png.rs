@@ -13,7 +13,7 @@ pub(super) fn write(path: &Path, img: &SpectralImage, opts: &OutputOptions) -> R
     let rgb = to_rgb(img, &img.data, ColourSpace::Srgb, opts)?;
     let conv = FilmToRgb::new(ColourSpace::Srgb, opts.observer, &img.grid, opts.cat)
         .map_err(|e| e.to_string())?;
-    let stops = opts.exposure.stops(img, &conv);
+    let stops = opts.exposure.stops(img, &conv, opts.view.white());
     let mut buf = Vec::with_capacity(rgb.len() * 3);
     for p in &rgb {
         let d = opts.view.apply(*p, stops);

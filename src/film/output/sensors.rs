@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::OutputError;
+use crate::film::sensor::RELIABLE_PASSES;
 use crate::film::{SensorKind, SensorReading};
 
 fn number(v: Option<f64>) -> String {
@@ -43,7 +44,8 @@ pub fn table(readings: &[SensorReading]) -> String {
     for r in readings {
         let se = r.std_error.map_or("-".into(), |e| format!("{e:.4}"));
         let ci = r.ci95.map_or("- (needs 2 passes)".into(), |[a, b]| {
-            format!("[{a:.4}, {b:.4}]")
+            let flag = if r.ci95_reliable { "" } else { " *" };
+            format!("[{a:.4}, {b:.4}]{flag}")
         });
         let _ = writeln!(
             s,
@@ -57,18 +59,30 @@ pub fn table(readings: &[SensorReading]) -> String {
             place(&r.kind)
         );
     }
+    if readings
+        .iter()
+        .any(|r| r.ci95.is_some() && !r.ci95_reliable)
+    {
+        let _ = writeln!(
+            s,
+            "* unreliable below {RELIABLE_PASSES} passes: the spread of a few passes of \
+             gathered light underestimates the error (render more passes)"
+        );
+    }
     s
 }
 
 /// The readings as CSV: one row per sensor (value, standard error, 95 % interval, unit,
 /// passes, place).
 pub fn csv(readings: &[SensorReading]) -> String {
-    let mut s = String::from("name,type,value,std_error,ci95_low,ci95_high,unit,passes,where\n");
+    let mut s = String::from(
+        "name,type,value,std_error,ci95_low,ci95_high,unit,passes,where,ci95_reliable\n",
+    );
     for r in readings {
         let [lo, hi] = r.ci95.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},\"{}\"",
+            "{},{},{},{},{},{},{},{},\"{}\",{}",
             r.name,
             r.kind.name(),
             number(Some(r.value)),
@@ -77,7 +91,8 @@ pub fn csv(readings: &[SensorReading]) -> String {
             number(hi),
             r.unit,
             r.passes,
-            place(&r.kind)
+            place(&r.kind),
+            r.ci95_reliable
         );
     }
     s

@@ -191,6 +191,26 @@ impl Tuner {
         !(self.auto_rays || self.auto_samples)
     }
 
+    /// What the pilot passes are to the render, in words for the report: a short render's user
+    /// must not read "pilot passes 0..8" of a 2-pass render as passes of its film.
+    fn pilots_said(&self) -> String {
+        let n = self.pilot_passes();
+        if self.pilots_join_film() {
+            format!(
+                "{n} pilot passes, the film's passes 0..{n} (kept in the image; a render of \
+                 fewer than {n} passes has only pilots, at their own q, and makes no choice)"
+            )
+        } else {
+            format!(
+                "{n} pilot passes rendered before the film's first pass and NOT in the film \
+                 (every process of the render traces them first, however few passes it asks \
+                 for: a render of N passes traces N + {n}, and its first pass takes about as \
+                 long as {})",
+                n + 1
+            )
+        }
+    }
+
     /// Film pass p is pass `p + film_offset()` of the seed's sequence.
     pub fn film_offset(&self) -> u64 {
         if self.pilots_join_film() {
@@ -284,8 +304,8 @@ impl Tuner {
         report.insert(
             0,
             format!(
-                "chosen from pilot passes 0..{}: q = {:?}, forward_rays = {}, camera_samples = {}",
-                self.pilot_passes(),
+                "chosen from {}: q = {:?}, forward_rays = {}, camera_samples = {}",
+                self.pilots_said(),
                 config.q,
                 config.forward_rays,
                 config.camera_samples

@@ -84,3 +84,35 @@ fn a_pilot_that_saw_no_light_is_no_evidence() {
     let choice = t.choice().expect("chosen after the pilots");
     assert_eq!(choice.config.camera_samples, 1, "{:?}", choice.report);
 }
+
+/// Issue 31: `-v` said "chosen from pilot passes 0..8" for a 2-pass render whose first pass
+/// took 8 s. The report says what the pilots are to the render.
+#[test]
+fn the_report_says_what_a_short_render_does_with_its_pilots() {
+    let mut t = budget_tuner();
+    feed(&mut t, |_| 1.0);
+    let first = &t.choice().expect("chosen").report[0];
+    assert!(
+        first.contains("6 pilot passes rendered before the film's first pass and NOT in the film")
+            && first.contains("a render of N passes traces N + 6"),
+        "{first}"
+    );
+    let desc = IntegratorDesc {
+        forward_rays: Setting::Value(50_000),
+        camera_samples: Setting::Value(1),
+        ..IntegratorDesc::default()
+    };
+    let base = PassConfig {
+        q: vec![1.0],
+        forward_rays: 50_000,
+        camera_samples: 1,
+    };
+    let mut t = Tuner::new(&desc, 1, base).expect("q is automatic");
+    feed(&mut t, |_| 1.0);
+    let first = &t.choice().expect("chosen").report[0];
+    assert!(
+        first.contains("4 pilot passes, the film's passes 0..4")
+            && first.contains("fewer than 4 passes has only pilots"),
+        "{first}"
+    );
+}

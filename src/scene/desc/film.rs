@@ -17,8 +17,11 @@ pub struct FilmDesc {
     /// Chromatic adaptation to a working space whose white is not D65 (ACEScg).
     pub adaptation: Cat,
     pub view: ViewTransform,
-    /// Exposure of display outputs: stops, or "auto" (metered).
-    pub exposure: Exposure,
+    /// Exposure of display outputs: stops, or "auto" (metered). Unset: the units' default
+    /// ([`Exposure::default_for`]: 0 stops radiometric, "auto" photometric). Not written when
+    /// unset, so that a film file's description reads back as unset.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exposure: Option<Exposure>,
     /// What EXR colour channels hold: "radiometric" or "photometric" (Y in cd/m²).
     #[serde(skip_serializing_if = "is_radiometric")]
     pub units: Units,
@@ -54,7 +57,7 @@ impl Default for FilmDesc {
             colour_space: ColourSpace::default(),
             adaptation: Cat::default(),
             view: ViewTransform::default(),
-            exposure: Exposure::default(),
+            exposure: None,
             units: Units::default(),
             light_layers: false,
             false_colour: false,
@@ -73,7 +76,7 @@ impl FilmDesc {
             colour_space: self.colour_space,
             observer: self.observer,
             view: self.view,
-            exposure: self.exposure,
+            exposure: self.exposure.unwrap_or(Exposure::default_for(self.units)),
             units: self.units,
             half: self.half,
             spectral_layers: self.spectral_layers,

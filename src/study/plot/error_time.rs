@@ -1,5 +1,7 @@
 //! RMSE against rendering time, log-log: one colour per variant, one line per run, a point per
-//! checkpoint, and a dashed 1/sqrt(t) guide (the slope of an unbiased estimator's error).
+//! checkpoint, a dashed 1/sqrt(t) guide (the slope of an unbiased estimator's error) and, on the
+//! whole image, the reference's noise floor: the RMSE its own standard error adds to every
+//! measurement, under which no variant can be seen to improve.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -21,10 +23,20 @@ pub(super) struct ErrorVsTime {
     title: String,
     x_desc: String,
     series: Vec<Series>,
+    /// The reference's RMSE floor, sqrt(mean squared standard error), when known for `m`.
+    floor: Option<f64>,
 }
 
 impl ErrorVsTime {
-    pub fn new(variants: &[Variant], rows: &[Row], m: Measure, clock: Clock) -> Self {
+    /// `noise_mse` is the reference's mean squared standard error of the whole image (its
+    /// layers and the scaled reference carry none of their own).
+    pub fn new(
+        variants: &[Variant],
+        rows: &[Row],
+        m: Measure,
+        clock: Clock,
+        noise_mse: Option<f64>,
+    ) -> Self {
         let series = variants
             .iter()
             .enumerate()
@@ -53,6 +65,12 @@ impl ErrorVsTime {
             title: format!("RMSE ({}) vs rendering time", m.name()),
             x_desc: clock.name().to_string(),
             series,
+            floor: match m {
+                Measure::Image => noise_mse
+                    .map(f64::sqrt)
+                    .filter(|f| f.is_finite() && *f > 0.0),
+                Measure::ImageScaled | Measure::Medium | Measure::Surface => None,
+            },
         }
     }
 
@@ -72,7 +90,7 @@ impl Figure for ErrorVsTime {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         root.fill(&WHITE).map_err(text)?;
         let (x0, x1) = log_range(self.points().map(|p| p.0));
-        let (y0, y1) = log_range(self.points().map(|p| p.1));
+        let (y0, y1) = log_range(self.points().map(|p| p.1).chain(self.floor));
         let axes = LogLogAxes::new(self.title.clone(), (x0, x1), &self.x_desc, (y0, y1), "RMSE");
         let mut chart = log_log(root, &axes)?;
         if let Some(g) = self.guide(x0, x1) {
@@ -82,6 +100,19 @@ impl Figure for ErrorVsTime {
                 .map_err(text)?
                 .label("∝ 1/√t")
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        }
+        if let Some(f) = self.floor {
+            let dark = RGBColor(60, 60, 60);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(x0, f), (x1, f)],
+                    3,
+                    4,
+                    dark.stroke_width(2),
+                ))
+                .map_err(text)?
+                .label("reference noise floor")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], dark));
         }
         for (i, s) in self.series.iter().enumerate() {
             let c = colour(i);

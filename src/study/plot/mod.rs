@@ -2,7 +2,8 @@
 //! text in DejaVu Sans, embedded, so it reads the same on every machine):
 //!
 //! - `error-vs-time[-LAYER]`: RMSE against rendering time on the study's clock, log-log, one
-//!   colour per variant, one line per run, with a 1/sqrt(t) guide;
+//!   colour per variant, one line per run, with a 1/sqrt(t) guide and (whole image) the
+//!   reference's noise floor;
 //! - `efficiency[-LAYER]`: each variant's efficiency 1 / (MSE x t), mean over runs with its
 //!   standard error, log scale;
 //! - `efficiency-vs-q[-LAYER]` (when `integrator.q` is varied): efficiency against q, one line
@@ -120,7 +121,8 @@ pub fn write_plots(
             continue;
         }
         let stem = |name: &str| dir.join(format!("{name}{}", suffix(m)));
-        let fig = error_time::ErrorVsTime::new(variants, rows, m, clock);
+        let fig =
+            error_time::ErrorVsTime::new(variants, rows, m, clock, summary.reference_noise_mse);
         written.extend(save(&fig, &stem("error-vs-time"))?);
         let fig = efficiency::ByVariant::new(&summary.variants, m, clock);
         written.extend(save(&fig, &stem("efficiency"))?);
