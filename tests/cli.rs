@@ -203,3 +203,6 @@ mod photometry;
 
 #[path = "cli/auto_settings.rs"]
 mod auto_settings;
+
+#[path = "cli/trust.rs"]
+mod trust;

@@ -388,6 +388,21 @@ fn resumes_that_disagree_with_the_checkpoint_are_refused_with_the_command_that_c
     assert!(out.status.success(), "{hint}: {}", stderr(&out));
     render(d, &["--pass-range", "2..5", "-o", "straight.brume"]);
     assert_same(d, "x.brume", "straight.brume");
+    // Without --passes the hint names a real end (it printed `2..B`, which is refused): as
+    // many passes again as the part holds, 2..6, and running it renders exactly those.
+    let out = try_render(d, &["--resume", "part.brume", "-o", "z.brume"]);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{err}");
+    let hint = between(&err, "continue it with `", "`");
+    assert!(hint.contains("--pass-range 2..6"), "{hint}");
+    let out = Command::new("sh")
+        .current_dir(d)
+        .args(["-c", &hint])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{hint}: {}", stderr(&out));
+    render(d, &["--pass-range", "2..6", "-o", "straight6.brume"]);
+    assert_same(d, "z.brume", "straight6.brume");
     // A range that ends before what the checkpoint holds would write more than asked.
     let out = try_render(
         d,

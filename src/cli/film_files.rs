@@ -55,13 +55,16 @@ pub fn film_desc(id: &FilmId) -> anyhow::Result<FilmDesc> {
 /// first image (when the scene has sensors). Film files (parts, checkpoints) get none.
 pub fn derived(outputs: &[PathBuf], film: &FilmDesc, sensors: bool) -> Derived {
     let images: Vec<&PathBuf> = outputs.iter().filter(|p| !is_film_path(p)).collect();
-    let mut false_colour: Vec<PathBuf> = Vec::new();
+    // Every image gets its map, also when an output is named like one (`-o b.png -o
+    // b-luminance.png`): the outputs check then refuses the pair instead of one silently
+    // replacing the other.
+    let mut false_colour: Vec<(PathBuf, PathBuf)> = Vec::new();
     if film.false_colour {
         for p in &images {
             let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
             let map = p.with_file_name(format!("{}-luminance.png", stem.unwrap_or_default()));
-            if !false_colour.contains(&map) && !outputs.contains(&map) {
-                false_colour.push(map);
+            if !false_colour.iter().any(|(m, _)| *m == map) {
+                false_colour.push((map, (*p).clone()));
             }
         }
     }
@@ -78,16 +81,30 @@ pub fn derived(outputs: &[PathBuf], film: &FilmDesc, sensors: bool) -> Derived {
 
 /// What [`derived`] decided.
 pub struct Derived {
-    pub false_colour: Vec<PathBuf>,
+    /// Each false-colour map with the image it belongs to.
+    false_colour: Vec<(PathBuf, PathBuf)>,
     pub sensors: Option<[PathBuf; 2]>,
     range: Option<[f32; 2]>,
 }
 
 impl Derived {
-    /// Every path, to check before rendering.
-    pub fn paths(&self) -> Vec<PathBuf> {
-        let mut all = self.false_colour.clone();
-        all.extend(self.sensors.iter().flatten().cloned());
+    /// Every path with what it is, for messages.
+    pub fn named(&self) -> Vec<(PathBuf, String)> {
+        let mut all: Vec<(PathBuf, String)> = self
+            .false_colour
+            .iter()
+            .map(|(map, image)| {
+                let what = format!(
+                    "{} (the false-colour map of {}, film.false_colour)",
+                    map.display(),
+                    image.display()
+                );
+                (map.clone(), what)
+            })
+            .collect();
+        for p in self.sensors.iter().flatten() {
+            all.push((p.clone(), format!("{} (the sensor readings)", p.display())));
+        }
         all
     }
 
@@ -99,7 +116,7 @@ impl Derived {
         image: &mut Option<SpectralImage>,
     ) -> (Vec<PathBuf>, Vec<anyhow::Error>) {
         let (mut written, mut failed) = (Vec::new(), Vec::new());
-        for path in &self.false_colour {
+        for (path, _) in &self.false_colour {
             let img = image.get_or_insert_with(|| film.image());
             match output::false_colour::write(path, img, self.range) {
                 Ok(()) => written.push(path.clone()),

@@ -23,7 +23,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             output::format_of(p)?;
         }
     }
-    outputs::check_distinct(&args.outputs.iter().collect::<Vec<_>>())?;
+    outputs::check_distinct(&outputs::named(&args.outputs))?;
     let mut parts = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         parts.push((p.clone(), checkpoint::read_header(p)?));
@@ -34,9 +34,10 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     check_parts(&parts)?;
     let film_desc = film_files::film_desc(&parts[0].1.id)?;
     let derived = film_files::derived(&args.outputs, &film_desc, has_sensors(&parts[0].1.id));
-    let mut all = args.outputs.clone();
-    all.extend(derived.paths());
-    outputs::check_distinct(&all.iter().collect::<Vec<_>>())?;
+    let mut named = outputs::named(&args.outputs);
+    named.extend(derived.named());
+    outputs::check_distinct(&named)?;
+    let all: Vec<PathBuf> = named.into_iter().map(|(p, _)| p).collect();
     outputs::prepare(&all)?;
 
     let (first_path, first) = &parts[0];

@@ -52,6 +52,7 @@ pub struct SceneArgs {
     pub scene: PathBuf,
     /// Override a scene value by its dotted path, e.g. `--set integrator.q=0.1` or
     /// `--set camera.width=64`; VALUE is TOML. Validated exactly like the file. Repeatable.
+    /// `--set media=none` switches every medium off (`media.NAME=none`: one medium).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
 }
@@ -61,7 +62,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Output file; repeat for several (e.g. `-o out.exr -o out.png`). Default: the scene's
-    /// `film.outputs`, else SCENE-NAME.exr and SCENE-NAME.png in the current folder.
+    /// `film.outputs` (in the scene file's folder), else SCENE-NAME.exr and SCENE-NAME.png in
+    /// the current folder.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub outputs: Vec<PathBuf>,
     /// Number of passes to render (default: the scene's `integrator.passes`).

@@ -7,10 +7,23 @@ use brume::film::{Film, FilmId, atomic, checkpoint};
 
 use super::film_files::FILM_EXT;
 
-/// A path as the file system resolves it (through symbolic links of its folder), so that two
-/// spellings of one file compare equal. Files that do not exist yet are resolved through their
-/// folder.
+/// Longest chain of symbolic links followed (Linux's own limit is 40).
+const MAX_LINKS: usize = 40;
+
+/// A path as the file system resolves it, so that two spellings of one file compare equal:
+/// symbolic links are followed, also to a file that does not exist yet (a link to an output
+/// of the same run), and a file that does not exist is resolved through its folder.
 fn resolved(p: &Path) -> PathBuf {
+    let mut p = p.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        let Ok(target) = std::fs::read_link(&p) else {
+            break;
+        };
+        p = match p.parent() {
+            Some(dir) if target.is_relative() => dir.join(target),
+            _ => target,
+        };
+    }
     if let Ok(c) = p.canonicalize() {
         return c;
     }
@@ -18,24 +31,47 @@ fn resolved(p: &Path) -> PathBuf {
     let dir = dir.unwrap_or(Path::new("."));
     match (dir.canonicalize(), p.file_name()) {
         (Ok(d), Some(name)) => d.join(name),
-        _ => p.to_path_buf(),
+        _ => p,
     }
 }
 
-/// Refuses one file named twice (`-o a.exr -o a.exr`, `--checkpoint x -o x`): the second write
-/// would replace the first with something else.
-pub fn check_distinct(paths: &[&PathBuf]) -> anyhow::Result<()> {
-    for (i, a) in paths.iter().enumerate() {
-        for b in &paths[..i] {
+/// Whether `a` and `b` name one file: the same resolved path, or (existing files) the same
+/// file on disk under two names (hard links).
+fn same_file(a: &Path, b: &Path) -> bool {
+    if resolved(a) == resolved(b) {
+        return true;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+    }
+    false
+}
+
+/// Refuses one file named twice (`-o a.exr -o a.exr`, `--checkpoint x -o x`, a link to
+/// another output, an image named like another's false-colour map): the second write would
+/// replace the first with something else. Each path comes with how the message names it.
+pub fn check_distinct(paths: &[(PathBuf, String)]) -> anyhow::Result<()> {
+    for (i, (a, a_name)) in paths.iter().enumerate() {
+        for (b, b_name) in &paths[..i] {
             anyhow::ensure!(
-                resolved(a) != resolved(b),
-                "{} and {} are the same file: give each output its own name",
-                b.display(),
-                a.display()
+                !same_file(a, b),
+                "{b_name} and {a_name} are the same file: give each output its own name",
             );
         }
     }
     Ok(())
+}
+
+/// Paths named by themselves, for [`check_distinct`].
+pub fn named(paths: &[PathBuf]) -> Vec<(PathBuf, String)> {
+    paths
+        .iter()
+        .map(|p| (p.clone(), p.display().to_string()))
+        .collect()
 }
 
 /// Before any work: removes temporary files of these outputs left by killed brume runs (saying
@@ -99,9 +135,33 @@ mod tests {
         let a = dir.path().join("x.brume");
         let b = dir.path().join("sub/../x.brume");
         std::fs::create_dir(dir.path().join("sub")).unwrap();
-        assert!(check_distinct(&[&a, &b]).is_err());
+        assert!(check_distinct(&named(&[a.clone(), b])).is_err());
         let c = dir.path().join("y.brume");
-        assert!(check_distinct(&[&a, &c]).is_ok());
+        assert!(check_distinct(&named(&[a, c])).is_ok());
+    }
+
+    /// A symbolic link to another output is that output, also before either exists (a
+    /// dangling link, relative or absolute, through a chain of links), and so is a hard link.
+    #[cfg(unix)]
+    #[test]
+    fn links_to_another_output_are_the_same_file() {
+        use std::os::unix::fs::symlink;
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let a = d.join("a.exr");
+        symlink("a.exr", d.join("rel.exr")).unwrap();
+        symlink(&a, d.join("abs.exr")).unwrap();
+        symlink("rel.exr", d.join("chain.exr")).unwrap();
+        for link in ["rel.exr", "abs.exr", "chain.exr"] {
+            let e = check_distinct(&named(&[a.clone(), d.join(link)])).unwrap_err();
+            assert!(e.to_string().contains("same file"), "{link}: {e}");
+        }
+        std::fs::write(&a, b"x").unwrap();
+        std::fs::hard_link(&a, d.join("hard.exr")).unwrap();
+        assert!(check_distinct(&named(&[a.clone(), d.join("hard.exr")])).is_err());
+        // A link to a file that is not an output is not refused.
+        symlink("other.exr", d.join("elsewhere.exr")).unwrap();
+        assert!(check_distinct(&named(&[a, d.join("elsewhere.exr")])).is_ok());
     }
 
     #[test]

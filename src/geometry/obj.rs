@@ -22,7 +22,7 @@ pub fn load_obj(path: &Path) -> Result<ShapeKind, GeometryError> {
     let mut uvs = Vec::new();
     let mut indices = Vec::new();
     let (mut all_normals, mut all_uvs) = (true, true);
-    for m in &models {
+    for (k, m) in models.iter().enumerate() {
         let mesh = &m.mesh;
         let base = positions.len() as u32;
         let nv = mesh.positions.len() / 3;
@@ -46,7 +46,11 @@ pub fn load_obj(path: &Path) -> Result<ShapeKind, GeometryError> {
         for tri in mesh.indices.chunks_exact(3) {
             let t = [tri[0] + base, tri[1] + base, tri[2] + base];
             if t.iter().any(|&i| i as usize >= positions.len()) {
-                return Err(err(format!("face index out of range in object {}", m.name)));
+                // The object is counted, not named: a file's text is never echoed.
+                return Err(err(format!(
+                    "face index out of range in object {} of the file",
+                    k + 1
+                )));
             }
             indices.push(t);
         }

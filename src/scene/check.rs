@@ -138,7 +138,7 @@ impl<'a> Checker<'a> {
     pub fn file(&mut self, key: &str, rel: &str) {
         let p = self.source.resolve(rel);
         if !p.is_file() {
-            self.fail(key, format!("file not found: {}", p.display()));
+            self.fail(key, super::source::not_a_file(&p));
         }
     }
 
@@ -147,7 +147,7 @@ impl<'a> Checker<'a> {
     pub fn texture(&mut self, key: &str, rel: &str) {
         let p = self.source.resolve(rel);
         if !p.is_file() {
-            return self.fail(key, format!("file not found: {}", p.display()));
+            return self.fail(key, super::source::not_a_file(&p));
         }
         match image_size(&p) {
             Err(e) => self.fail(key, format!("{}: not a readable image: {e}", p.display())),

@@ -42,13 +42,45 @@ fn parse_assignment(text: &str) -> Result<Assignment, SceneError> {
     })
 }
 
+/// Largest scene file read: scenes are kilobytes (meshes and tables live in their own files);
+/// the bound keeps `/dev/zero` or a huge file named by mistake from filling the memory.
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
+
 /// Read, override and validate a scene file.
 pub fn load(file: &Path, sets: &[String]) -> Result<LoadedScene, SceneError> {
-    let text = std::fs::read_to_string(file).map_err(|e| SceneError::Read {
+    let text = read_scene(file).map_err(|message| SceneError::Read {
         file: file.to_path_buf(),
-        message: e.to_string(),
+        message,
     })?;
     load_str(&text, file, sets)
+}
+
+/// The text of a scene file, or why it is not one: a folder, too large, not UTF-8 text (a pipe
+/// such as `<(generate-scene)` is read like a file, up to the bound).
+fn read_scene(file: &Path) -> Result<String, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(file).map_err(|e| e.to_string())?;
+    if meta.is_dir() {
+        return Err("is a folder, not a scene file".into());
+    }
+    let f = std::fs::File::open(file).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    f.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(format!(
+            "larger than {} MiB: not a scene file (scenes are TOML text of a few kilobytes)",
+            MAX_SCENE_BYTES >> 20
+        ));
+    }
+    // The bytes are not shown: a file named by mistake must not be echoed.
+    String::from_utf8(bytes).map_err(|_| "not UTF-8 text: not a scene file".to_string())
+}
+
+/// Whether a scene text holds no keys at all (empty, or only comments and blank lines).
+fn is_empty_scene(text: &str) -> bool {
+    text.parse::<toml::Table>().is_ok_and(|t| t.is_empty())
 }
 
 /// As [`load`], from text already read; `file` names it in messages and anchors relative paths.
@@ -69,6 +101,19 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
         }
     };
 
+    if is_empty_scene(text) {
+        // Every key has a default, so an empty file would render a black image and succeed.
+        return Err(SceneError::Invalid {
+            origin: Origin::File {
+                file: file.to_path_buf(),
+                line: None,
+            },
+            key: KeyText(String::new()),
+            message: "the scene file is empty (no keys, only blank lines or comments): a scene \
+                      needs at least a light and something to see (docs/scene-format.md)"
+                .into(),
+        });
+    }
     let de = toml::Deserializer::parse(text)
         .map_err(|e| in_file(String::new(), e.message().to_string(), e.span()))?;
     let mut desc: SceneDesc = serde_path_to_error::deserialize(de).map_err(|e| {
@@ -144,12 +189,14 @@ fn apply_assignments(desc: SceneDesc, sets: &[Assignment]) -> Result<SceneDesc, 
     };
     let mut root = toml::Value::try_from(&desc).map_err(|e| internal(e.to_string()))?;
     for a in sets {
-        set_path(&mut root, &a.path, a.value.clone()).map_err(|message| {
-            SceneError::BadAssignment {
-                assignment: a.text.clone(),
-                message,
-            }
-        })?;
+        let bad = |message| SceneError::BadAssignment {
+            assignment: a.text.clone(),
+            message,
+        };
+        match media_off(a) {
+            Some(which) => remove_media(&mut root, which).map_err(bad)?,
+            None => set_path(&mut root, &a.path, a.value.clone()).map_err(bad)?,
+        }
         // Check each assignment on its own so the error names the one at fault.
         if let Err(e) = serde_path_to_error::deserialize::<_, SceneDesc>(root.clone()) {
             let key = clean_path(&e.path().to_string());
@@ -169,6 +216,61 @@ fn apply_assignments(desc: SceneDesc, sets: &[Assignment]) -> Result<SceneDesc, 
         }
     }
     serde_path_to_error::deserialize(root).map_err(|e| internal(e.to_string()))
+}
+
+/// `media=none` (every medium: `Some(None)`) or `media.NAME=none` (`Some(Some(NAME))`).
+fn media_off(a: &Assignment) -> Option<Option<&str>> {
+    if a.value.as_str() != Some("none") {
+        return None;
+    }
+    match a.path.as_slice() {
+        [Seg::Key(m)] if m == "media" => Some(None),
+        [Seg::Key(m), Seg::Key(name)] if m == "media" => Some(Some(name)),
+        _ => None,
+    }
+}
+
+/// Switches media off: removes `which` (all when None) from `[media]`, and every reference to
+/// it (the top-level `medium`, the shapes' `interior` and `exterior`), so that the scene stays
+/// valid: a shape that only bounded the fog becomes an empty index-matched boundary.
+fn remove_media(root: &mut toml::Value, which: Option<&str>) -> Result<(), String> {
+    let Some(table) = root.as_table_mut() else {
+        return Err("the scene is not a table".into());
+    };
+    let names: Vec<String> = table
+        .get("media")
+        .and_then(|m| m.as_table())
+        .map(|m| m.keys().cloned().collect())
+        .unwrap_or_default();
+    if let Some(name) = which
+        && !names.iter().any(|n| n == name)
+    {
+        return Err(format!(
+            "the scene has no medium `{name}` (its media: {})",
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                names.join(", ")
+            }
+        ));
+    }
+    let gone = |v: &toml::Value| v.as_str().is_some_and(|m| which.is_none_or(|w| w == m));
+    if let Some(media) = table.get_mut("media").and_then(|m| m.as_table_mut()) {
+        media.retain(|name, _| which.is_some_and(|w| w != name));
+    }
+    if table.get("medium").is_some_and(gone) {
+        table.remove("medium");
+    }
+    if let Some(shapes) = table.get_mut("shapes").and_then(|s| s.as_array_mut()) {
+        for shape in shapes.iter_mut().filter_map(|s| s.as_table_mut()) {
+            for side in ["interior", "exterior"] {
+                if shape.get(side).is_some_and(gone) {
+                    shape.remove(side);
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 fn set_path(root: &mut toml::Value, path: &[Seg], value: toml::Value) -> Result<(), String> {

@@ -67,3 +67,15 @@ impl Source<'_> {
         }
     }
 }
+
+/// Why `p`, named as a file, cannot be read as one: missing, a folder, a device or pipe
+/// (`/dev/zero` would be read forever), or unreadable.
+pub fn not_a_file(p: &Path) -> String {
+    let what = match std::fs::metadata(p) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => "file not found".to_string(),
+        Err(e) => format!("cannot read it: {e}"),
+        Ok(m) if m.is_dir() => "is a folder, not a file".to_string(),
+        Ok(_) => "is not a regular file (a device, pipe or socket)".to_string(),
+    };
+    format!("{}: {what}", p.display())
+}

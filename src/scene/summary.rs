@@ -31,6 +31,9 @@ pub struct Summary {
     pub memory: crate::integrator::MemoryEstimate,
     /// Per medium: its phase function and per range of bins its optical properties.
     pub media_report: Vec<String>,
+    /// One line per light and per sensor: its key, kind and keys as the scene gives them.
+    pub lights_report: Vec<String>,
+    pub sensors_report: Vec<String>,
 }
 
 pub fn summarise(scene: &LoadedScene) -> Summary {
@@ -65,7 +68,37 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
             !d.media.is_empty(),
         ),
         media_report: media_report(scene),
+        lights_report: d
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| format!("  lights.{i}: {}", keys_line(l)))
+            .collect(),
+        sensors_report: d
+            .sensors
+            .iter()
+            .enumerate()
+            .map(|(i, s)| format!("  sensors.{i} ({}): {}", s.name(i), keys_line(s)))
+            .collect(),
     }
+}
+
+/// A `type`-tagged table as one line: its type, then its keys as TOML (`laser, position =
+/// [0.0, 1.0, 2.0], power = 1.0, spectrum = { line = 532.0 }`).
+fn keys_line<T: serde::Serialize>(table: &T) -> String {
+    let Ok(toml::Value::Table(mut t)) = toml::Value::try_from(table) else {
+        // Every light and sensor description is a table; nothing else to show.
+        return String::new();
+    };
+    let kind = match t.remove("type") {
+        Some(toml::Value::String(k)) => k,
+        _ => String::new(),
+    };
+    let keys = t.iter().map(|(k, v)| format!("{k} = {v}"));
+    std::iter::once(kind)
+        .chain(keys)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// How a value is written in a scene file (serde's name for it), for unit enum variants.
@@ -196,6 +229,16 @@ impl fmt::Display for Summary {
             m.tiles()
         )?;
         writeln!(f, "film:         {}", bytes(m.film_bytes))?;
+        writeln!(f, "lights:       {}", self.lights_report.len())?;
+        for line in &self.lights_report {
+            writeln!(f, "{line}")?;
+        }
+        if !self.sensors_report.is_empty() {
+            writeln!(f, "sensors:      {}", self.sensors_report.len())?;
+            for line in &self.sensors_report {
+                writeln!(f, "{line}")?;
+            }
+        }
         for line in &self.media_report {
             writeln!(f, "{line}")?;
         }

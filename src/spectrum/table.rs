@@ -153,12 +153,13 @@ impl SpectralTable {
         })?;
         let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
         if !names[0].eq_ignore_ascii_case("wavelength_nm") {
+            // The line is not quoted: a path named by mistake (a scene's or a `--set`'s) must
+            // not have its first line printed.
             return Err(perr(
                 hline,
-                format!(
-                    "header must start with `wavelength_nm` (wavelengths in nanometres), found {:?}",
-                    names[0]
-                ),
+                "not a spectrum table: its first line (after comments) must be the header \
+                 `wavelength_nm,<column>,...` (wavelengths in nanometres)"
+                    .into(),
             ));
         }
         if names.len() < 2 || names[1..].iter().any(|n| n.is_empty()) {
@@ -259,17 +260,19 @@ fn parse_row(line: &str, names: &[String], allow_negative: bool) -> Result<Vec<f
             fields.len()
         ));
     }
+    // Fields are named by their column (from the header, which made this file a spectrum
+    // table), never quoted: a file's content is not echoed in messages.
     let mut row = Vec::with_capacity(names.len());
     for (f, name) in fields.iter().zip(names) {
         let v: f64 = f
             .parse()
-            .map_err(|_| format!("column {name:?}: {f:?} is not a number"))?;
+            .map_err(|_| format!("column {name:?}: the value is not a number"))?;
         if !v.is_finite() {
-            return Err(format!("column {name:?}: value {f} is not finite"));
+            return Err(format!("column {name:?}: the value is not finite"));
         }
         if !row.is_empty() && v < 0.0 && !allow_negative {
             return Err(format!(
-                "column {name:?}: negative value {f} is not allowed here"
+                "column {name:?}: a negative value is not allowed here"
             ));
         }
         row.push(v);

@@ -1,26 +1,89 @@
 //! Ctrl-C and SIGTERM. During setup (loading, building the scene: Lorenz-Mie droplets or a large
 //! mesh can take minutes) nothing has been rendered, so brume exits at once with 130. While
 //! rendering, the first stops the pass in flight (the engine never adds a partial pass to the
-//! film), then brume saves the completed passes and exits 130; a second aborts at once.
+//! film), then brume saves the completed passes and exits 130. While the outputs are written
+//! (a large spectral EXR takes a while), the first lets the writing finish and brume then exits
+//! 130. In both a second aborts at once with 130: every output is written to a temporary name
+//! and renamed into place, so an abort leaves each file either complete or as it was.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 
 /// Exit status of an interrupted render (the shell convention for SIGINT).
 pub const INTERRUPTED: u8 = 130;
 
+/// What the process is doing when a signal comes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    Setup = 0,
+    Rendering = 1,
+    Writing = 2,
+}
+
+impl Phase {
+    fn from_u8(v: u8) -> Self {
+        match v {
+            0 => Phase::Setup,
+            1 => Phase::Rendering,
+            // Only the three phases are ever stored.
+            _ => Phase::Writing,
+        }
+    }
+}
+
+/// What the handler does with the `count`-th signal (0-based) in `phase`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Action {
+    /// Exit with 130 now, printing the message.
+    Exit(&'static str),
+    /// Raise the stop flag and go on, printing the message (unless quiet).
+    Stop(&'static str),
+}
+
+fn action(phase: Phase, count: usize) -> Action {
+    match (phase, count) {
+        // Outputs are written only after rendering (at most the empty file that checked a
+        // folder is writable can be left, and the next run on that output removes it).
+        (Phase::Setup, _) => {
+            Action::Exit("interrupted during setup, before any pass: nothing written")
+        }
+        (Phase::Rendering, 0) => Action::Stop(
+            "interrupt: stopping the pass in flight, then saving the completed passes \
+             (interrupt again to abort without saving)",
+        ),
+        (Phase::Writing, 0) => Action::Stop(
+            "interrupt: finishing the outputs being written, then exiting (interrupt again to \
+             abort: a file not yet written keeps its previous content)",
+        ),
+        (Phase::Rendering | Phase::Writing, _) => Action::Exit(
+            "aborted (each output is either complete or as it was: files are written to a \
+             temporary name and renamed into place)",
+        ),
+    }
+}
+
 /// The flags the handler shares with the render.
 pub struct Interrupt {
-    /// Set by the first interrupt while rendering: the engine stops the pass in flight.
+    /// Set by the first interrupt while rendering or writing: the engine stops the pass in
+    /// flight, and the command exits 130 once its files are written.
     pub stop: Arc<AtomicBool>,
-    /// False during setup, when an interrupt exits at once.
-    rendering: Arc<AtomicBool>,
+    phase: Arc<AtomicU8>,
 }
 
 impl Interrupt {
     /// From now on an interrupt stops the render and saves its passes instead of exiting.
     pub fn rendering_starts(&self) {
-        self.rendering.store(true, Ordering::SeqCst);
+        self.phase.store(Phase::Rendering as u8, Ordering::SeqCst);
+    }
+
+    /// From now on an interrupt lets the outputs being written finish (a second aborts).
+    pub fn writing_starts(&self) {
+        self.phase.store(Phase::Writing as u8, Ordering::SeqCst);
+    }
+
+    /// Whether an interrupt came since rendering started.
+    pub fn interrupted(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
     }
 }
 
@@ -28,31 +91,52 @@ impl Interrupt {
 /// is caught as well.
 pub fn install(quiet: bool) -> Interrupt {
     let stop = Arc::new(AtomicBool::new(false));
-    let rendering = Arc::new(AtomicBool::new(false));
+    let phase = Arc::new(AtomicU8::new(Phase::Setup as u8));
     let count = AtomicUsize::new(0);
-    let (flag, phase) = (stop.clone(), rendering.clone());
+    let (flag, shared_phase) = (stop.clone(), phase.clone());
     let result = ctrlc::set_handler(move || {
-        if !phase.load(Ordering::SeqCst) {
-            // Outputs are written only after rendering (at most the empty file that checked a
-            // folder is writable can be left, and the next run on that output removes it).
-            eprintln!("\nbrume: interrupted during setup, before any pass: nothing written");
-            std::process::exit(INTERRUPTED as i32);
-        }
-        if count.fetch_add(1, Ordering::SeqCst) == 0 {
-            flag.store(true, Ordering::SeqCst);
-            if !quiet {
-                eprintln!(
-                    "\nbrume: interrupt: stopping the pass in flight, then saving the completed \
-                     passes (interrupt again to abort without saving)"
-                );
-            }
+        let now = Phase::from_u8(shared_phase.load(Ordering::SeqCst));
+        let n = if now == Phase::Setup {
+            0
         } else {
-            eprintln!("\nbrume: aborted");
-            std::process::exit(INTERRUPTED as i32);
+            count.fetch_add(1, Ordering::SeqCst)
+        };
+        match action(now, n) {
+            Action::Exit(message) => {
+                eprintln!("\nbrume: {message}");
+                std::process::exit(INTERRUPTED as i32);
+            }
+            Action::Stop(message) => {
+                flag.store(true, Ordering::SeqCst);
+                if !quiet {
+                    eprintln!("\nbrume: {message}");
+                }
+            }
         }
     });
     if let Err(e) = result {
         eprintln!("brume: warning: cannot catch interrupts ({e}); Ctrl-C will lose the render");
     }
-    Interrupt { stop, rendering }
+    Interrupt { stop, phase }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A second interrupt exits while rendering and while writing, whatever phase the first
+    /// came in; the first never exits once rendering started.
+    #[test]
+    fn a_second_interrupt_always_exits() {
+        for phase in [Phase::Rendering, Phase::Writing] {
+            assert!(matches!(action(phase, 0), Action::Stop(_)), "{phase:?}");
+            for n in 1..4 {
+                assert!(matches!(action(phase, n), Action::Exit(_)), "{phase:?} {n}");
+            }
+        }
+        assert!(matches!(action(Phase::Setup, 0), Action::Exit(_)));
+        for p in [Phase::Setup, Phase::Rendering, Phase::Writing] {
+            assert_eq!(Phase::from_u8(p as u8), p);
+        }
+    }
 }

@@ -55,7 +55,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             println!("auto: {line}");
         }
     }
+    // An interrupt from now on lets the files being written finish; a second aborts.
+    interrupt.writing_starts();
     let saved = save(args, (&outputs, &derived), &film, &id, auto.as_ref())?;
+    let interrupted = interrupted || interrupt.interrupted();
     report(args, &film, &id, interrupted, start, &saved, &cmd);
     if film.passes > 0 && plan.range.is_none() {
         film_files::report_extras(&film, args.quiet);

@@ -104,13 +104,16 @@ fn check_resume(
             );
         }
         (None, _) if first > 0 => {
-            let b = args.passes.map(u64::from).filter(|p| *p > end);
+            // The hint is a command that runs: --passes when it asks for more than the part
+            // holds, else as many passes again as it holds (the end is the user's to choose).
+            let asked = args.passes.map(u64::from).filter(|p| *p > end);
+            let b = asked.unwrap_or_else(|| (end + (end - first)).min(MAX_PASS_END));
             anyhow::bail!(
                 "{holds} (a part of a distributed render): it continues only with its own \
                  --pass-range; continue it with `{}`{}",
-                continue_with(b.map_or("B".into(), |b| b.to_string())),
-                if b.is_none() {
-                    format!(" (B > {end})")
+                continue_with(b.to_string()),
+                if asked.is_none() {
+                    format!(" (or any end above {end})")
                 } else {
                     String::new()
                 }
