@@ -83,7 +83,10 @@ fn visibility_and_liquid_water_are_consistent() {
         assert!(o.sigma_sca[l] <= o.sigma_ext[l] && o.sigma_abs[l] >= 0.0);
         // Two-sided: an extinction sum off by any factor shows.
         let balance = (o.sigma_sca[l] + o.sigma_abs[l]) / o.sigma_ext[l] - 1.0;
-        assert!(balance.abs() < 1e-6, "bin {l}: (sca + abs) / ext - 1 = {balance:e}");
+        assert!(
+            balance.abs() < 1e-6,
+            "bin {l}: (sca + abs) / ext - 1 = {balance:e}"
+        );
         assert!(o.g[l] > 0.7 && o.g[l] < 0.9, "g = {}", o.g[l]);
     }
 }
@@ -357,19 +360,41 @@ fn droplets_out_of_range_are_refused_with_their_key() {
     };
     let e = fails(&with("effective_radius = 1e-3\nvisibility = 100.0"), d);
     assert_eq!(e.key(), Some("media.fog.droplets.effective_radius"), "{e}");
-    assert!(e.to_string().contains("in [0.01, 1000] µm, got 0.001"), "{e}");
+    assert!(
+        e.to_string().contains("in [0.01, 1000] µm, got 0.001"),
+        "{e}"
+    );
 
-    let e = fails(&with("effective_radius = 2.0\nliquid_water_content = 2e6"), d);
-    assert_eq!(e.key(), Some("media.fog.droplets.liquid_water_content"), "{e}");
-    assert!(e.to_string().contains("below the density of liquid water"), "{e}");
+    let e = fails(
+        &with("effective_radius = 2.0\nliquid_water_content = 2e6"),
+        d,
+    );
+    assert_eq!(
+        e.key(),
+        Some("media.fog.droplets.liquid_water_content"),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("below the density of liquid water"),
+        "{e}"
+    );
 
     let e = fails(&with("effective_radius = 0.5\nnumber_density = 1e13"), d);
-    assert!(e.to_string().contains("more than liquid water itself"), "{e}");
+    assert!(
+        e.to_string().contains("more than liquid water itself"),
+        "{e}"
+    );
 
     let start = std::time::Instant::now();
-    let e = fails(&with("effective_radius = 1000.0\nwidth = 5.0\nvisibility = 100.0"), d);
+    let e = fails(
+        &with("effective_radius = 1000.0\nwidth = 5.0\nvisibility = 100.0"),
+        d,
+    );
     let text = e.to_string();
-    assert!(start.elapsed().as_secs_f64() < 10.0, "refused only after solving");
+    assert!(
+        start.elapsed().as_secs_f64() < 10.0,
+        "refused only after solving"
+    );
     assert_eq!(e.key(), Some("media.fog.droplets"), "{e}");
     assert!(
         text.contains("effective_radius 1000 µm would need") && text.contains("smaller droplets"),
@@ -384,7 +409,10 @@ fn droplets_out_of_range_are_refused_with_their_key() {
 fn the_smallest_droplets_are_solved_over_enough_radii() {
     let index = brume::medium::droplets::RefractiveIndex::water().unwrap();
     let dist = SizeDistribution::lognormal(0.01, 1.01);
-    let mu: Vec<f64> = phase_angles().iter().map(|a| a.to_radians().cos()).collect();
+    let mu: Vec<f64> = phase_angles()
+        .iter()
+        .map(|a| a.to_radians().cos())
+        .collect();
     let o = ensemble(&dist, 0.38, index.at(380.0), &mu, 0.02).unwrap();
     assert!(o.nodes >= 65, "{} radii", o.nodes);
     assert!(o.c_sca > 0.0 && o.phase.iter().all(|p| p.is_finite() && *p > 0.0));

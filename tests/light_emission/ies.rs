@@ -120,7 +120,10 @@ spectrum = "F11"
     for (light, want) in s.lights.lights()[1..].iter().zip([750.0, 40.0]) {
         let (peak, down) = (cd(light, world_dir(60.0, 90.0)), cd(light, Vec3::NEG_Y));
         assert!((peak / want - 1.0).abs() < 1e-5, "{peak} cd vs {want}");
-        assert!((down / (want / 4.0) - 1.0).abs() < 1e-5, "{down} cd vs {want} / 4");
+        assert!(
+            (down / (want / 4.0) - 1.0).abs() < 1e-5,
+            "{down} cd vs {want} / 4"
+        );
     }
 }
 
