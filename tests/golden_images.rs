@@ -3,6 +3,9 @@
 //! (issue 14). A refactor must not change a single bit; a change of the algorithms updates the
 //! table on purpose and says why in its commit.
 //!
+//! The same scenes with next-event estimation (`integrator.direct = "nee"`, which the first
+//! table cannot see: it pins the photon method) have their own table, recorded in issue 31.
+//!
 //! The hash covers the image and both component layers (f32 bits, from the film's exact integer
 //! sums), so any change in sampling, weights or sum order shows.
 
@@ -661,5 +664,109 @@ fn every_scene_and_estimator_is_bit_identical_to_the_recorded_images() {
         }
     }
     assert!(!GOLDEN.is_empty(), "no recorded hashes");
+    assert!(wrong.is_empty(), "images changed:\n{}", wrong.join("\n"));
+}
+
+/// Settings of the next-event-estimation goldens: every light the scene's NEE handles is
+/// sampled from camera paths (the table above pins the paper's pure photon method, so it
+/// cannot see a change in next-event estimation, its MIS weights or shadow rays), each scene
+/// once with its own estimator and mode, tiny.
+const NEE: [&str; 6] = [
+    "integrator.direct=\"nee\"",
+    "camera.width=16",
+    "camera.height=12",
+    "integrator.forward_rays=3000",
+    "integrator.camera_samples=1",
+    "integrator.max_gather_bytes=100000000",
+];
+
+/// A scene of this test's own, as no shipped scene has a glossy surface reflecting an area
+/// light: there next-event estimation's light samples and the coat's own samples share the
+/// reflection by their MIS weights, and a wrong weight changes the image.
+const GLOSSY_AREA: &str = r#"
+[film]
+bins = 4
+[camera]
+type = "perspective"
+position = [0, 1, 2]
+look_at = [0, 0, 0]
+fov = 50.0
+[integrator]
+radius = 0.03
+[materials.floor]
+type = "glossy"
+albedo = 0.2
+ior = 1.5
+roughness = 0.08
+[media.fog]
+sigma_s = 0.3
+[[shapes]]
+type = "quad"
+size = [3, 3]
+material = "floor"
+transform = { rotate = [-90, 0, 0] }
+[[shapes]]
+type = "quad"
+size = [0.8, 0.8]
+emit = 1.0
+transform = { rotate = [60, 0, 0], translate = [0, 0.8, -1.2] }
+[[shapes]]
+type = "box"
+size = [1, 0.5, 1]
+interior = "fog"
+transform = { translate = [0, 0.3, 0] }
+"#;
+
+/// (scene, hash) with `NEE` and `PINNED`: every scene in scenes/ and `GLOSSY_AREA` (as
+/// "glossy-area"). Recorded when added (issue 31).
+const GOLDEN_NEE: &[(&str, u64)] = &[
+    ("chromatic-fog", 0xa82166ab7ae95ffc),
+    ("colour-checker", 0x83ea012ec782c675),
+    ("droplet-fog-hg", 0x6b912f4ae0365152),
+    ("droplet-fog", 0xe4e366a4e028bd37),
+    ("fog-cube", 0xc24b9c43a01bb1d0),
+    ("fog-room-laser", 0xc8c751316e5738ca),
+    ("glass-sphere-fog", 0xa677fd20aa9cedc6),
+    ("laser-mirror", 0xd599a00ae4d0deed),
+    ("street-fog", 0xdf5b9354a6b2ba4e),
+    ("translucent-plate", 0x86fa736dd6735118),
+    ("glossy-area", 0xd023ffc72a1cc86d),
+];
+
+#[test]
+fn every_scene_with_next_event_estimation_is_bit_identical_to_its_recorded_image() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("scenes/ exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let own = tmp.path().join("glossy-area.toml");
+    std::fs::write(&own, GLOSSY_AREA).expect("write");
+    files.push(own);
+    let mut got = Vec::new();
+    for f in &files {
+        let name = f.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut sets: Vec<String> = NEE.iter().map(|s| s.to_string()).collect();
+        let pinned = PINNED.iter().filter(|(s, _)| *s == name);
+        sets.extend(pinned.map(|(_, set)| set.to_string()));
+        got.push((name, render_hash(f, &sets)));
+    }
+    let table: String = got
+        .iter()
+        .map(|(s, h)| format!("    (\"{s}\", 0x{h:016x}),\n"))
+        .collect();
+    eprintln!("{table}");
+    let mut wrong = Vec::new();
+    for (s, want) in GOLDEN_NEE {
+        match got.iter().find(|(gs, _)| gs == s) {
+            Some((_, h)) if h == want => {}
+            Some((_, h)) => wrong.push(format!("{s}: 0x{h:016x}, recorded 0x{want:016x}")),
+            None => wrong.push(format!("{s}: not rendered")),
+        }
+    }
+    assert_eq!(GOLDEN_NEE.len(), files.len(), "a recorded hash per scene");
     assert!(wrong.is_empty(), "images changed:\n{}", wrong.join("\n"));
 }

@@ -181,6 +181,26 @@ mod tests {
         assert!((e - 683.0).abs() < 0.1, "{e}");
     }
 
+    /// Bins wider than 1 nm, of two widths: a flat spectrum's efficacy is K_m times the mean
+    /// of V over the range (the same whatever the bins), and the power it divides by counts
+    /// each bin's width.
+    #[test]
+    fn efficacy_counts_the_bin_widths() {
+        let y = &Observer::Cie1931.cmfs().unwrap().y;
+        let want = K_M * y.integral(400.0, 700.0, Extrapolation::Zero) / 300.0;
+        // The 1931 y-bar integrates to 106.794 over 400-700 nm (trapezoid of its 1 nm table).
+        assert!(
+            (want / (683.0 * 106.794 / 300.0) - 1.0).abs() < 1e-4,
+            "{want}"
+        );
+        for n in [5, 12] {
+            let g = SpectralGrid::new(n, 400.0, 700.0);
+            let w = luminous_weights(&g).unwrap();
+            let e = luminous_efficacy(&w, &vec![2.5; n], &g).unwrap();
+            assert!((e / want - 1.0).abs() < 1e-9, "{n} bins: {e} vs {want}");
+        }
+    }
+
     #[test]
     fn grey_medium_mor_is_ln20_over_sigma() {
         let g = SpectralGrid::new(32, 380.0, 780.0);

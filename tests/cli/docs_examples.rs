@@ -227,10 +227,14 @@ fn shrink(words: &[String], out: &Path, range_unit: u64) -> Vec<String> {
                 let v = value(&mut it);
                 args.extend([w.clone(), redirect(&v, out)]);
             }
-            "scene.toml" => args.push("scenes/fog-cube.toml".into()),
+            "scene.toml" => args.push(in_repository("scenes/fog-cube.toml")),
             image if sub == "probe" && image.ends_with(".exr") => args.push(redirect(image, out)),
             part if sub == "merge" && part.ends_with(".brume") => {
                 args.extend(glob(&redirect(part, out)));
+            }
+            // The repository's own files (scenes/...), as the command runs in `out`.
+            file if !file.starts_with('-') && repository().join(file).exists() => {
+                args.push(in_repository(file))
             }
             _ => args.push(w.clone()),
         }
@@ -241,6 +245,26 @@ fn shrink(words: &[String], out: &Path, range_unit: u64) -> Vec<String> {
         }
     }
     args
+}
+
+fn repository() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The absolute path of a file of the repository.
+fn in_repository(rel: &str) -> String {
+    repository().join(rel).to_string_lossy().into_owned()
+}
+
+/// The names in a folder (the repository's root and scenes/, which examples must not write to).
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("readable folder")
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
 }
 
 /// Expands one `*` in the file name (the docs' `part-*.brume`), as the shell would.
@@ -287,7 +311,8 @@ fn range_unit(examples: &[Example]) -> u64 {
 
 #[test]
 fn every_documented_command_runs() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = repository();
+    let before = [listing(root), listing(&root.join("scenes"))];
     let (mut ran, mut skipped, mut failed) = (0, Vec::new(), Vec::new());
     for doc in docs() {
         let text = std::fs::read_to_string(&doc).expect("readable doc");
@@ -308,8 +333,10 @@ fn every_documented_command_runs() {
                 skipped.push(format!("{shown}\n    skipped: {why}"));
                 continue;
             }
+            // In the test's folder: a command that writes a file it is not told to (a
+            // render's default `fog-cube.exr`) writes it there, not into the repository.
             let out = Command::new(env!("CARGO_BIN_EXE_brume"))
-                .current_dir(root)
+                .current_dir(tmp.path())
                 .args(&args)
                 .output()
                 .expect("brume runs");
@@ -332,6 +359,14 @@ fn every_documented_command_runs() {
     );
     // README's quick start, its image commands, the distributed and study examples at least.
     assert!(ran >= 12, "only {ran} documented commands found and run");
+    let after = [listing(root), listing(&root.join("scenes"))];
+    for (b, a) in before.iter().zip(&after) {
+        let new: Vec<&String> = a.iter().filter(|n| !b.contains(n)).collect();
+        assert!(
+            new.is_empty(),
+            "documented commands wrote {new:?} into the repository"
+        );
+    }
 }
 
 #[test]

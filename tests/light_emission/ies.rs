@@ -84,6 +84,49 @@ fn the_light_evaluates_the_candela_table_at_its_angles() {
     assert!((mid - want).abs() < 1e-9, "{mid} vs {want}");
 }
 
+/// A profiled light given in candela (`intensity`, the table's peak): a point and a spot send
+/// that many cd towards the table's brightest entry (gamma 60, C 90 of asymmetric.ies: 400 cd
+/// times its multiplier 2) and the table's proportion of it elsewhere (straight down: 100 of
+/// 400), with their own spectra.
+#[test]
+fn a_profile_given_in_candela_has_that_intensity_at_its_peak() {
+    let g = table("asymmetric.ies");
+    assert_eq!(g.peak(), 800.0);
+    let text = format!(
+        "{LAMP}{}",
+        r#"
+[[lights]]
+type = "point"
+position = [0, 3, 0]
+profile = "../tests/data/asymmetric.ies"
+profile_c0 = [1, 0, 0]
+intensity = 750.0
+spectrum = "A"
+[[lights]]
+type = "spot"
+position = [0, 3, 0]
+direction = [0, -1, 0]
+profile = "../tests/data/asymmetric.ies"
+profile_c0 = [1, 0, 0]
+intensity = 40.0
+spectrum = "F11"
+"#
+    );
+    let s = scene(&text);
+    let v = brume::colour::photometry::luminous_weights(&s.grid).expect("V");
+    let cd = |light: &brume::light::Light, d: Vec3| {
+        brume::colour::photometry::photometric(&v, light.intensity(d).as_slice(s.grid.n))
+    };
+    for (light, want) in s.lights.lights()[1..].iter().zip([750.0, 40.0]) {
+        let (peak, down) = (cd(light, world_dir(60.0, 90.0)), cd(light, Vec3::NEG_Y));
+        assert!((peak / want - 1.0).abs() < 1e-5, "{peak} cd vs {want}");
+        assert!(
+            (down / (want / 4.0) - 1.0).abs() < 1e-5,
+            "{down} cd vs {want} / 4"
+        );
+    }
+}
+
 /// `integral of eval sin(gamma)` over a patch of angles, midpoint rule on `k` x `k` points.
 fn quadrature(g: &Goniometric, g0: f64, g1: f64, c0: f64, c1: f64, k: usize) -> f64 {
     let (dg, dc) = ((g1 - g0) / k as f64, (c1 - c0) / k as f64);

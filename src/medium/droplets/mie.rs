@@ -63,17 +63,17 @@ pub fn ensemble(
     step: f64,
 ) -> Result<EnsembleOptics, MediumError> {
     let k = 2.0 * PI / lambda_um;
-    let (r_lo, r_hi) = dist.range();
-    let dr = step / k;
-    let nodes = ((r_hi - r_lo) / dr).ceil().max(2.0) as usize;
+    let (r_lo, dr, nodes) = nodes(dist, k, step);
     if nodes > 2_000_000 {
+        let r_hi = r_lo + nodes as f64 * dr;
         return Err(MediumError::Droplets(format!(
             "droplets up to {r_hi:.3e} µm at {lambda_um} µm need {nodes} Lorenz-Mie solutions per \
              wavelength; use a narrower distribution or a larger quadrature step"
         )));
     }
     let opts = MieOptions::new();
-    let n_max = n_terms(k * r_hi, m, &opts).map_err(mie_err)?;
+    // The last node, not the range's end: it may lie up to one spacing beyond it.
+    let n_max = n_terms(k * (r_lo + nodes as f64 * dr), m, &opts).map_err(mie_err)?;
     let mut tiers = Vec::new();
     let mut upper = f64::INFINITY;
     for (lowest, stride) in TIERS {
@@ -84,11 +84,14 @@ pub fn ensemble(
         upper = lowest;
     }
     let mut mie = Mie::<f64>::new();
-    let (mut count, mut ext, mut sca, mut abs, mut sca_g) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut ext, mut sca, mut abs, mut sca_g) = (0.0, 0.0, 0.0, 0.0);
     // Normalise n(r) at its peak so that the weights stay O(1).
     let peak = (0..=nodes)
         .map(|i| dist.ln_density(r_lo + i as f64 * dr))
         .fold(f64::NEG_INFINITY, f64::max);
+    // The number of droplets in the same units as the weights' sum (∫ n dr = dr Σ w), over
+    // all radii: see `SizeDistribution::ln_count`.
+    let count = (dist.ln_count() - peak).exp() / dr;
     for i in 0..=nodes {
         let r = r_lo + i as f64 * dr;
         // Trapezoid weights; the end weights are 1/2 (their integrand is ~1e-5 of the peak).
@@ -97,7 +100,6 @@ pub fn ensemble(
         let sphere = mie.compute(k * r, m, &opts).map_err(mie_err)?;
         let q = sphere.efficiencies();
         let wa = w * PI * r * r;
-        count += w;
         ext += wa * q.q_ext;
         sca += wa * q.q_sca;
         abs += wa * q.q_abs;
@@ -128,6 +130,31 @@ pub fn ensemble(
         phase,
         nodes: nodes + 1,
     })
+}
+
+/// Fewest radii in a size integral: a narrow distribution of small droplets spans less than
+/// a few node spacings in size parameter, and a handful of trapezoid nodes would not resolve
+/// its shape.
+const MIN_NODES: f64 = 64.0;
+
+/// The size integral's first radius (µm), node spacing (µm) and number of intervals at
+/// wavenumber `k` (1/µm): `step / k` apart over `dist.range()`, or closer for a range
+/// narrower than `MIN_NODES` such spacings.
+fn nodes(dist: &SizeDistribution, k: f64, step: f64) -> (f64, f64, usize) {
+    let (r_lo, r_hi) = dist.range();
+    let dr = (step / k).min((r_hi - r_lo) / MIN_NODES);
+    (r_lo, dr, ((r_hi - r_lo) / dr).ceil().max(2.0) as usize)
+}
+
+/// About how many Lorenz-Mie terms (series orders, ~x + 4 x^(1/3) + 2 per radius) [`ensemble`]
+/// sums for `dist` at `lambda_um` (µm) with node spacing `step`: what its time is proportional
+/// to, as each term also enters the phase-function sums. Evaluated at the middle radius (exact
+/// for the linear part, which dominates).
+pub fn terms(dist: &SizeDistribution, lambda_um: f64, step: f64) -> f64 {
+    let k = 2.0 * PI / lambda_um;
+    let (r_lo, dr, nodes) = nodes(dist, k, step);
+    let x = k * (r_lo + 0.5 * nodes as f64 * dr);
+    (nodes + 1) as f64 * (x + 4.0 * x.cbrt() + 2.0)
 }
 
 /// A subset of the requested angles with its precomputed angular functions and running sums

@@ -62,6 +62,23 @@ impl SizeDistribution {
         }
     }
 
+    /// `ln ∫ n(r) dr` of the unnormalised density `exp(ln_density)`, in closed form: the
+    /// droplet count the size integral divides by. Counting the droplets over the quadrature's
+    /// range instead would leave out the small ones below it (the range holds the cross
+    /// section, not the number) and overstate the cross section per droplet (by 5e-5 at
+    /// σ_g = 1.5, 5e-4 at 2, 7% at 5).
+    pub fn ln_count(&self) -> f64 {
+        match *self {
+            // ∫ exp(-z²/2) / r dr = ∫ exp(-z²/2) d(ln r) = s √(2π).
+            SizeDistribution::LogNormal { s, .. } => s.ln() + 0.5 * (2.0 * PI).ln(),
+            // u = b r^γ: ∫ r^α e^{-b r^γ} dr = Γ((α + 1)/γ) / (γ b^{(α + 1)/γ}).
+            SizeDistribution::ModifiedGamma { alpha, b, gamma } => {
+                let a = (alpha + 1.0) / gamma;
+                ln_gamma(a) - gamma.ln() - a * b.ln()
+            }
+        }
+    }
+
     /// Effective radius `<r³>/<r²>` (µm).
     pub fn effective_radius(&self) -> f64 {
         self.moment(3.0) / self.moment(2.0)
