@@ -74,6 +74,12 @@ const PINNED: &[(&str, &str)] = &[
     ("street-fog", "lights.2.spectrum=\"laser-532nm.csv\""),
 ];
 
+/// Whether a medium of the scene has a density field.
+fn has_density(scene: &std::path::Path) -> bool {
+    let loaded = brume::scene::load(scene, &[]).unwrap_or_else(|e| panic!("{e}"));
+    loaded.desc.media.values().any(|m| m.density.is_some())
+}
+
 fn render_hash(scene: &std::path::Path, sets: &[String]) -> u64 {
     let loaded = brume::scene::load(scene, sets).unwrap_or_else(|e| panic!("{e}"));
     let built = brume::scene::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
@@ -622,6 +628,31 @@ const GOLDEN: &[(&str, &str, &str, u64)] = &[
         "see-through",
         0x36ce6f2e23ba69ff,
     ),
+    // Recorded when height fog came (issue 27): spheres only (cylinders are refused there).
+    (
+        "valley-fog",
+        "spheres-q1",
+        "first-extinction",
+        0xf7b8281fd7d01e60,
+    ),
+    (
+        "valley-fog",
+        "spheres-q1",
+        "see-through",
+        0x302df4822128697d,
+    ),
+    (
+        "valley-fog",
+        "spheres-q0.1",
+        "first-extinction",
+        0xac2996ca1d9ac1ed,
+    ),
+    (
+        "valley-fog",
+        "spheres-q0.1",
+        "see-through",
+        0x14d885ec17faa69c,
+    ),
 ];
 
 #[test]
@@ -636,7 +667,12 @@ fn every_scene_and_estimator_is_bit_identical_to_the_recorded_images() {
     let mut got = Vec::new();
     for f in &files {
         let name = f.file_stem().unwrap().to_string_lossy().into_owned();
+        let density = has_density(f);
         for (est, est_sets) in ESTIMATORS {
+            // Cylinders are refused in media with a density field (docs/media.md).
+            if density && !est.starts_with("spheres") {
+                continue;
+            }
             for mode in MODES {
                 let mut sets: Vec<String> = COMMON.iter().map(|s| s.to_string()).collect();
                 sets.extend(est_sets.iter().map(|s| s.to_string()));
@@ -730,6 +766,7 @@ const GOLDEN_NEE: &[(&str, u64)] = &[
     ("laser-mirror", 0xd599a00ae4d0deed),
     ("street-fog", 0xdf5b9354a6b2ba4e),
     ("translucent-plate", 0x86fa736dd6735118),
+    ("valley-fog", 0x7f94a9b9e3e56414),
     ("glossy-area", 0xd023ffc72a1cc86d),
 ];
 
