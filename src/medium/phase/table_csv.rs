@@ -96,11 +96,15 @@ fn parse_header(header: &str, file: &Path, line: usize) -> Result<Vec<Option<f64
     }
     let waves = names[1..]
         .iter()
-        .map(|n| {
+        .enumerate()
+        .map(|(k, n)| {
+            // The file's text is never echoed (it may be any file): the column is named by
+            // its position.
             wavelength_of(n).map(Some).ok_or_else(|| {
                 let m = format!(
-                    "with several value columns each must be named by its wavelength in nm, got \
-                     `{n}`"
+                    "with several value columns each must be named by its wavelength in nm; \
+                     column {} is not",
+                    k + 2
                 );
                 parse_err(file, line, m)
             })
@@ -121,9 +125,14 @@ fn parse_row(row: &str, width: usize, prev: Option<f64>) -> Result<Vec<f64>, Str
     }
     let nums = cells
         .iter()
-        .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
-        .collect::<Option<Vec<f64>>>()
-        .ok_or_else(|| format!("not a row of finite numbers: `{row}`"))?;
+        .enumerate()
+        .map(|(k, c)| {
+            c.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("column {} is not a finite number", k + 1))
+        })
+        .collect::<Result<Vec<f64>, String>>()?;
     let angle = nums[0];
     if !(0.0..=180.0).contains(&angle) {
         return Err(format!("angle {angle} is outside [0, 180] degrees"));
@@ -223,4 +232,24 @@ fn bin_lanes(waves: &[f64], cols: &[Vec<f64>], grid: &SpectralGrid) -> Vec<Vec<f
                 .collect()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod echo_tests {
+    use super::*;
+
+    /// Errors name the line and column, never the file's text (issue 31: a file named as a
+    /// table could be any file).
+    #[test]
+    fn errors_do_not_echo_the_file() {
+        let file = Path::new("t.csv");
+        for text in [
+            "angle,value\n0,secret-word\n",
+            "angle,secret-word,550\n0,1,1\n",
+        ] {
+            let e = parse(text, file).expect_err("refused").to_string();
+            assert!(!e.contains("secret"), "{e}");
+            assert!(e.contains("column"), "{e}");
+        }
+    }
 }

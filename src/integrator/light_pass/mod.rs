@@ -11,10 +11,10 @@ use rand::Rng as _;
 use super::Integrator;
 use super::camera_splat;
 use super::chunk_order::{Shared, WakeOnPanic};
-use super::estimator::{Estimator, ForwardSegment, VolumeEstimator};
+
 use super::gather::Gather;
 use super::path::{self, MediumStep, PathStep, SurfaceStep};
-use super::record::{CLASS_C, CLASS_D, PRIMARY};
+use super::record::{CLASS_C, CLASS_D};
 use super::rng::{self, Domain, Rng};
 use super::sensors::SensorGather;
 use super::target::Target;
@@ -24,6 +24,8 @@ use crate::material::LobeKind;
 use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
+
+mod volumes;
 
 /// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
 /// order (and so every bit of the image) does not depend on how many threads ran. Small, so that
@@ -273,102 +275,6 @@ impl ForwardTracer<'_> {
             let w = gather.throughput(rec.throughput);
             let (buf, norm) = (&mut *self.buf, self.norm);
             target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
-        });
-        self.hits += hits;
-    }
-
-    /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
-    /// the volumes it meets (the image's, then the sensor paths'); `flight` is the segment's
-    /// flight in a medium.
-    fn gather_volumes(
-        &mut self,
-        m: Option<u32>,
-        ray: &Ray,
-        len: f32,
-        flight: Option<&ForwardFlight>,
-    ) {
-        let image = Target::Image { light: self.light };
-        self.gather_volumes_in((self.gather, image), m, ray, len, flight);
-        if let Some(s) = self.sensors {
-            let target = Target::Sensors {
-                scale: s.path_scale,
-            };
-            self.gather_volumes_in((&s.gather, target), m, ray, len, flight);
-        }
-    }
-
-    fn gather_volumes_in(
-        &mut self,
-        into: (&Gather, Target),
-        m: Option<u32>,
-        ray: &Ray,
-        len: f32,
-        flight: Option<&ForwardFlight>,
-    ) {
-        let integrator = self.integrator;
-        match &integrator.estimator {
-            Estimator::Spheres(e) => self.gather_with(e, into, m, ray, len, flight),
-            Estimator::Cylinder(e) => self.gather_with(e, into, m, ray, len, flight),
-            Estimator::TruncatedCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
-            Estimator::LongCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
-        }
-    }
-
-    /// `gather_volumes_in` for one estimator. Volumes of another medium count too when their
-    /// medium is bounded only by index-matched boundaries, across which the radiance field is
-    /// continuous (method note 8).
-    fn gather_with<E: VolumeEstimator>(
-        &mut self,
-        e: &E,
-        (gather, target): (&Gather, Target),
-        m: Option<u32>,
-        ray: &Ray,
-        len: f32,
-        flight: Option<&ForwardFlight>,
-    ) {
-        let scene = self.scene;
-        let n = scene.grid.n;
-        let radius = gather.radii.of(self.first_flight);
-        let (norm, class) = (self.norm, self.class);
-        // A camera path's first volumes leave direct and caustic light to the splat
-        // (`camera_splat`).
-        let skip_primary = if self.specular_chain
-            && matches!(target, Target::Image { .. })
-            && self.integrator.settings.splat_to_camera
-        {
-            PRIMARY
-        } else {
-            0
-        };
-        let buf = &mut *self.buf;
-        let seg_medium = m.map_or(u16::MAX, |m| m as u16);
-        // A grey flight's flux does not change along the segment: skip its survival weights.
-        let fwd = ForwardSegment {
-            o: ray.o,
-            d: ray.d,
-            len,
-            flux: &self.flux,
-            flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
-            along: m.map_or(Along::Identity, |m| {
-                scene.media[m as usize].density.along(ray.o, ray.d)
-            }),
-        };
-        let mut hits = 0u64;
-        gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
-            hits += 1;
-            if seg.classes & class == 0 || seg.classes & skip_primary != 0 {
-                return;
-            }
-            let same = seg.medium == seg_medium;
-            if !same && (E::WHOLE_FORWARD_SEGMENT || !scene.open_medium(seg.medium as u32)) {
-                return;
-            }
-            // The record's own medium scatters the light towards the camera.
-            let med = &scene.media[seg.medium as usize];
-            let w = gather.throughput(seg.throughput);
-            if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
-                target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
-            }
         });
         self.hits += hits;
     }

@@ -1,0 +1,110 @@
+//! The forward tracer's gathering into integration volumes: a forward segment, in a medium or
+//! outside (open media), against the volumes of the image's and the sensor paths' gather
+//! structures, with the render's estimator.
+
+use super::ForwardTracer;
+use crate::film::Layer;
+use crate::geometry::Ray;
+use crate::integrator::estimator::{Estimator, ForwardSegment, VolumeEstimator};
+use crate::integrator::gather::Gather;
+use crate::integrator::record::PRIMARY;
+use crate::integrator::target::Target;
+use crate::medium::{Along, ForwardFlight};
+
+impl ForwardTracer<'_> {
+    /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
+    /// the volumes it meets (the image's, then the sensor paths'); `flight` is the segment's
+    /// flight in a medium.
+    pub(super) fn gather_volumes(
+        &mut self,
+        m: Option<u32>,
+        ray: &Ray,
+        len: f32,
+        flight: Option<&ForwardFlight>,
+    ) {
+        let image = Target::Image { light: self.light };
+        self.gather_volumes_in((self.gather, image), m, ray, len, flight);
+        if let Some(s) = self.sensors {
+            let target = Target::Sensors {
+                scale: s.path_scale,
+            };
+            self.gather_volumes_in((&s.gather, target), m, ray, len, flight);
+        }
+    }
+
+    fn gather_volumes_in(
+        &mut self,
+        into: (&Gather, Target),
+        m: Option<u32>,
+        ray: &Ray,
+        len: f32,
+        flight: Option<&ForwardFlight>,
+    ) {
+        let integrator = self.integrator;
+        match &integrator.estimator {
+            Estimator::Spheres(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::Cylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::TruncatedCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+            Estimator::LongCylinder(e) => self.gather_with(e, into, m, ray, len, flight),
+        }
+    }
+
+    /// `gather_volumes_in` for one estimator. Volumes of another medium count too when their
+    /// medium is bounded only by index-matched boundaries, across which the radiance field is
+    /// continuous (method note 8).
+    fn gather_with<E: VolumeEstimator>(
+        &mut self,
+        e: &E,
+        (gather, target): (&Gather, Target),
+        m: Option<u32>,
+        ray: &Ray,
+        len: f32,
+        flight: Option<&ForwardFlight>,
+    ) {
+        let scene = self.scene;
+        let n = scene.grid.n;
+        let radius = gather.radii.of(self.first_flight);
+        let (norm, class) = (self.norm, self.class);
+        // A camera path's first volumes leave direct and caustic light to the splat
+        // (`camera_splat`).
+        let skip_primary = if self.specular_chain
+            && matches!(target, Target::Image { .. })
+            && self.integrator.settings.splat_to_camera
+        {
+            PRIMARY
+        } else {
+            0
+        };
+        let buf = &mut *self.buf;
+        let seg_medium = m.map_or(u16::MAX, |m| m as u16);
+        // A grey flight's flux does not change along the segment: skip its survival weights.
+        let fwd = ForwardSegment {
+            o: ray.o,
+            d: ray.d,
+            len,
+            flux: &self.flux,
+            flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
+            along: m.map_or(Along::Identity, |m| {
+                scene.media[m as usize].density.along(ray.o, ray.d)
+            }),
+        };
+        let mut hits = 0u64;
+        gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
+            hits += 1;
+            if seg.classes & class == 0 || seg.classes & skip_primary != 0 {
+                return;
+            }
+            let same = seg.medium == seg_medium;
+            if !same && (E::WHOLE_FORWARD_SEGMENT || !scene.open_medium(seg.medium as u32)) {
+                return;
+            }
+            // The record's own medium scatters the light towards the camera.
+            let med = &scene.media[seg.medium as usize];
+            let w = gather.throughput(seg.throughput);
+            if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
+                target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
+            }
+        });
+        self.hits += hits;
+    }
+}
