@@ -150,8 +150,8 @@ fn media(c: &mut Checker, d: &SceneDesc) {
                 "integrator.volume",
                 format!(
                     "{key}.density: a medium with a density field renders with \
-                     `volume = \"spheres\"` only (cylinders are not yet derived for \
-                     non-uniform media)"
+                     `volume = \"spheres\"` only (cylinders in non-uniform media are not \
+                     implemented yet; docs/media.md)"
                 ),
             );
         }

@@ -242,7 +242,11 @@ fn malformed_files_are_refused_with_their_line() {
             5,
             "type 2 (B)",
         ),
-        (good.replace("TILT=NONE", "TILT=INCLUDE"), 4, "TILT=INCLUDE"),
+        (
+            good.replace("TILT=NONE", "TILT=INCLUDE"),
+            4,
+            "TILT is not NONE",
+        ),
         (good.replace("100 120 400", "100 120 -400"), 10, "negative"),
         (format!("{good}5\n"), 14, "after the last"),
     ];
