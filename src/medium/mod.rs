@@ -1,6 +1,8 @@
-//! Participating media: homogeneous spectral media, phase functions (a closed set, `phase`),
-//! fog from droplet sizes by Lorenz–Mie theory (`droplets`), the spectral channel mixture used to sample distances, the camera-side multi-sphere walk
-//! (docs: method note 2-4) and forward (light-side) free flights.
+//! Participating media: spectral media (coefficients at density 1 times a density field,
+//! `density`), phase functions (a closed set, `phase`), fog from droplet sizes by Lorenz–Mie
+//! theory (`droplets`), the spectral channel mixture used to sample distances, the camera-side
+//! multi-sphere walk (docs: method note 2-4) and forward (light-side) free flights. Walks and
+//! flights run in optical depth at density 1 (`density::Along`, docs/media.md).
 //!
 //! Everything here is allocation-free and works on one segment at a time, so the render engine
 //! can call it from its per-ray loops.

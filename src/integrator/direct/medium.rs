@@ -1,13 +1,14 @@
-//! Single scattering of direct light along one camera segment `[0, len]` in a homogeneous
-//! medium (method note 9):
+//! Single scattering of direct light along one camera segment `[0, len]` (method note 9):
 //!
-//! `I_l = ∫_0^len e^{-st_l t} ss_l p(u, v) T_l(x(t) -> light) Li_l(x(t)) dt`,
+//! `I_l = ∫_0^len e^{-st_l D(t)} rho(t) ss_l p(u, v) T_l(x(t) -> light) Li_l(x(t)) dt`,
 //!
+//! with the medium's density `rho` and its optical depth `D(t)` along the segment (`D(t) = t`,
+//! `rho = 1` in a homogeneous medium; docs/media.md),
 //! estimated with `nee_samples` stratified distances from one density `p(t)` shared by all bins,
 //! so that `f_l(t) / p(t)` is unbiased in every bin without mixture weights. The density follows
-//! the light: a truncated exponential whose rate is the camera's extinction plus the growth of
-//! the light's optical depth along the segment (exact for a parallel light in a convex
-//! homogeneous medium, where that depth is linear in t), or equiangular about a point light or a
+//! the light: a truncated exponential in `D` whose rate is the camera's extinction plus the
+//! growth of the light's optical depth per unit of `D` (exact for a parallel light in a convex
+//! homogeneous medium, where that depth is linear), or equiangular about a point light or a
 //! point sampled on an area light, clipped to a spot's cone.
 
 use glam::{Vec2, Vec3};
