@@ -74,6 +74,18 @@ const PINNED: &[(&str, &str)] = &[
     ("street-fog", "lights.2.spectrum=\"laser-532nm.csv\""),
 ];
 
+/// The scene files in scenes/, in name order.
+fn shipped_scenes() -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("scenes/ exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
 /// Whether a medium of the scene has a density field.
 fn has_density(scene: &std::path::Path) -> bool {
     let loaded = brume::scene::load(scene, &[]).unwrap_or_else(|e| panic!("{e}"));
@@ -657,13 +669,7 @@ const GOLDEN: &[(&str, &str, &str, u64)] = &[
 
 #[test]
 fn every_scene_and_estimator_is_bit_identical_to_the_recorded_images() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("scenes/ exists")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
+    let files = shipped_scenes();
     let mut got = Vec::new();
     for f in &files {
         let name = f.file_stem().unwrap().to_string_lossy().into_owned();
@@ -772,13 +778,7 @@ const GOLDEN_NEE: &[(&str, u64)] = &[
 
 #[test]
 fn every_scene_with_next_event_estimation_is_bit_identical_to_its_recorded_image() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("scenes/ exists")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    files.sort();
+    let mut files = shipped_scenes();
     let tmp = tempfile::tempdir().expect("tempdir");
     let own = tmp.path().join("glossy-area.toml");
     std::fs::write(&own, GLOSSY_AREA).expect("write");
