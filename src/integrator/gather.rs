@@ -189,6 +189,11 @@ impl Gather {
         )
     }
 
+    /// Whether `from_output_until` builds the gather of `out` on a thread of its own.
+    pub fn builds_apart(out: &CameraOutput) -> bool {
+        out.surfaces.len() + out.volumes.len() >= WATCHED_BUILD
+    }
+
     /// `from_output`, abandoned (None) once `stop` is set. obvhs cannot be interrupted and a
     /// gather at the budget's limit takes seconds to build, so a large one is built on a thread
     /// of its own (in a pool of the caller's size) while this one watches `stop`; an abandoned
@@ -199,7 +204,7 @@ impl Gather {
         out: &mut CameraOutput,
         stop: &AtomicBool,
     ) -> Option<Self> {
-        if out.surfaces.len() + out.volumes.len() < WATCHED_BUILD {
+        if !Self::builds_apart(out) {
             return Some(Self::from_output(estimator, radii, out));
         }
         let records = CameraOutput {

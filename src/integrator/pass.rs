@@ -60,6 +60,9 @@ pub struct Renderer<'a> {
     /// Set when a pass was abandoned because one row of camera paths exceeded the gather
     /// budget: every later pass would be too (see `over_budget`).
     over_budget: Option<OverBudget>,
+    /// Told the number of records before a gather too large to build at once is built (the
+    /// CLI's `--verbose` prints it: the build is the one silent phase of a pass).
+    on_large_build: Option<Box<dyn FnMut(usize) + 'a>>,
     pub stats: Stats,
 }
 
@@ -85,6 +88,7 @@ impl<'a> Renderer<'a> {
             sensors: sensor_points(scene),
             integrator,
             over_budget: None,
+            on_large_build: None,
             stats: Stats::default(),
         }
     }
@@ -120,6 +124,12 @@ impl<'a> Renderer<'a> {
         r.radii = r.integrator.radii(film.end());
         r.film = film;
         Ok(r)
+    }
+
+    /// Calls `f` with the number of records before each gather large enough to be built on a
+    /// thread of its own (`Gather::builds_apart`), the part of a pass that reports no progress.
+    pub fn on_large_build(&mut self, f: impl FnMut(usize) + 'a) {
+        self.on_large_build = Some(Box::new(f));
     }
 
     /// Why passes stopped being added, other than `stop`: a row of camera paths that alone
@@ -280,6 +290,9 @@ impl<'a> Renderer<'a> {
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
             work.volumes += out.volumes.len() as u64;
+            if let (Some(f), true) = (&mut self.on_large_build, Gather::builds_apart(&out)) {
+                f(out.surfaces.len() + out.volumes.len());
+            }
             let gather =
                 Gather::from_output_until(&integrator.estimator, self.radii, &mut out, stop)?;
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());

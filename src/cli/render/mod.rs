@@ -153,6 +153,9 @@ fn render(
         Budget::Passes(p) => p as u64,
         Budget::Time(t) => t.ceil() as u64,
     };
+    if args.verbose && !args.quiet {
+        renderer.on_large_build(|n| eprintln!("render: building the gather of {n} records"));
+    }
     // Before the progress shows the render started: an interrupt now saves, not exits.
     interrupt.rendering_starts();
     let mut progress = Progress::new("render", total, args.quiet);
