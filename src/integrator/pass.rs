@@ -8,6 +8,7 @@ use super::auto::{Choice, Tuner, Work, pixel_totals};
 use super::camera_pass::{CameraJob, Halt, OverBudget, camera_pass, splat_direct};
 use super::gather::Gather;
 use super::light_pass::{LightJob, light_pass};
+use super::record::CameraOutput;
 use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
 use super::{Integrator, Radii};
 use crate::film::{Film, PassBuffer, SpectralImage};
@@ -290,11 +291,8 @@ impl<'a> Renderer<'a> {
             self.stats.surface_records += out.surfaces.len() as u64;
             self.stats.volume_records += out.volumes.len() as u64;
             work.volumes += out.volumes.len() as u64;
-            if let (Some(f), true) = (&mut self.on_large_build, Gather::builds_apart(&out)) {
-                f(out.surfaces.len() + out.volumes.len());
-            }
-            let gather =
-                Gather::from_output_until(&integrator.estimator, self.radii, &mut out, stop)?;
+            let hook = &mut self.on_large_build;
+            let gather = build_gather(hook, &integrator.estimator, self.radii, &mut out, stop)?;
             self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
             let t2 = Instant::now();
             let light = LightJob {
@@ -380,4 +378,19 @@ impl<'a> Renderer<'a> {
             after_pass(&self.film, start.elapsed().as_secs_f64());
         }
     }
+}
+
+/// The gather structure of a tile's camera paths (None once `stop` is set), said first to
+/// the `on_large_build` hook when it is built apart.
+fn build_gather(
+    hook: &mut Option<Box<dyn FnMut(usize) + '_>>,
+    estimator: &super::Estimator,
+    radii: Radii,
+    out: &mut CameraOutput,
+    stop: &AtomicBool,
+) -> Option<Gather> {
+    if let (Some(f), true) = (hook, Gather::builds_apart(out)) {
+        f(out.surfaces.len() + out.volumes.len());
+    }
+    Gather::from_output_until(estimator, radii, out, stop)
 }

@@ -8,7 +8,7 @@ use crate::spectrum::{MAX_BINS, Spectrum};
 ///
 /// Fields are public for reading in hot loops; build it with [`Medium::new`], which
 /// validates, so that the invariants hold.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Medium {
     /// Scattering coefficient per bin (1/m).
     pub sigma_s: Spectrum,

@@ -26,10 +26,10 @@ pub fn density_report(scene: &Scene, names: &[&str]) -> Vec<String> {
         };
         out.push(format!(
             "medium {name}: density {}; from {rmin:.4e} to {rmax:.4e} over the scene's bounds; \
-             memory: {} bytes (closed form); visibility {} at the greatest density, {} at the \
+             memory: {} bytes; visibility {} at the greatest density, {} at the \
              least",
             m.density.describe(),
-            std::mem::size_of_val(&m.density),
+            m.density.bytes(),
             mor(rmax),
             mor(rmin)
         ));

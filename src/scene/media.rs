@@ -9,7 +9,7 @@ use super::desc::MediumDesc;
 use super::error::{KeyText, Origin, SceneError};
 use super::source::Source;
 use super::spectra::SpectrumResolver;
-use crate::medium::{BuiltMedium, Medium, MediumError, MediumParts};
+use crate::medium::{BuiltMedium, Density, Medium, MediumError, MediumParts};
 use crate::spectrum::SpectralGrid;
 
 /// Builds medium `name` of `desc`.
@@ -52,8 +52,14 @@ pub fn build_medium(
             other => source.invalid(&k, other.to_string()),
         }
     })?;
+    let density = match &desc.density {
+        None => Density::Uniform,
+        Some(d) => d
+            .build(&|f| source.resolve(f))
+            .map_err(|e| source.invalid(&format!("{key}.density.{}", e.key), e.message))?,
+    };
     Ok(BuiltMedium {
-        medium: built.medium.with_density(desc.density()),
+        medium: built.medium.with_density(density),
         ..built
     })
 }

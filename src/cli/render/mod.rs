@@ -177,22 +177,27 @@ fn render(
     });
     progress.finish();
     if args.verbose {
-        let s = renderer.stats();
-        println!(
-            "work: {} camera paths, {} volume records, {} forward rays, {} gather hits; \
-             seconds: camera {:.3}, build {:.3}, light {:.3}",
-            s.camera_paths,
-            s.volume_records,
-            s.forward_rays,
-            s.gather_hits,
-            s.camera_seconds,
-            s.build_seconds,
-            s.light_seconds
-        );
+        print_work(&renderer);
     }
     let auto = renderer.auto_choice().cloned();
     let over_budget = renderer.over_budget().cloned();
     Ok((renderer.into_film(), interrupted, auto, over_budget))
+}
+
+/// `--verbose`'s account of the work done and where the time went.
+fn print_work(renderer: &Renderer) {
+    let s = renderer.stats();
+    println!(
+        "work: {} camera paths, {} volume records, {} forward rays, {} gather hits; \
+         seconds: camera {:.3}, build {:.3}, light {:.3}",
+        s.camera_paths,
+        s.volume_records,
+        s.forward_rays,
+        s.gather_hits,
+        s.camera_seconds,
+        s.build_seconds,
+        s.light_seconds
+    );
 }
 
 /// What was written, and which film file holds the passes (to resume or merge from).

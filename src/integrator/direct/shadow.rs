@@ -41,7 +41,7 @@ pub fn optical_depth(
         };
         if let Some(m) = medium {
             let med = &scene.media[m as usize];
-            tau += med.sigma_t * med.density.along(ray.o, ray.d).depth(len);
+            tau += med.sigma_t * med.density.depth_to(ray.o, ray.d, len);
         }
         let Some(h) = hit else { return Some(tau) };
         if scene.geometry.shape(h.shape).material.is_some() {

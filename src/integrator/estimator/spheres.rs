@@ -87,9 +87,7 @@ impl VolumeEstimator for Spheres {
         // The per-bin factors need the sphere's optical depth: its distance unless a density
         // field maps one to the other (recomputed here, so records stay 12 bytes).
         let u = match x {
-            Some(_) if !med.density.is_uniform() => {
-                med.density.along(seg.origin, seg.dir).depth(v.s)
-            }
+            Some(_) if !med.density.is_uniform() => med.density.depth_to(seg.origin, seg.dir, v.s),
             Some(_) | None => v.s,
         };
         // The phase function only once the exact test hit: about half the box candidates miss.

@@ -15,118 +15,33 @@
 //! One file per kind: a kind gives its density along its `up` axis and the integral and
 //! inverse integral of that profile ([`Profile`]).
 
+mod desc;
+pub mod grid;
 mod height;
 mod layer;
 
-use glam::Vec3;
-use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
+use glam::Vec3;
+
+pub use desc::{DensityDesc, DensityError, GridTransform};
+pub use grid::{GridField, GridRay};
 pub use height::Height;
 pub use layer::Layer;
 
-/// A medium's `density` as the scene file gives it: `density = { type = "...", ... }`.
-/// docs/scene-format.md documents every variant.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum DensityDesc {
-    /// Exponential height fog, `rho = exp(-(h - base) / scale_height)`, `h = up . x`.
-    Height {
-        #[serde(default)]
-        base: f32,
-        scale_height: f32,
-        #[serde(default = "default_up")]
-        up: [f32; 3],
-    },
-    /// A fog bank: 1 below `top - transition / 2`, 0 above `top + transition / 2`, a smooth
-    /// step (cubic) in between.
-    Layer {
-        top: f32,
-        transition: f32,
-        #[serde(default = "default_up")]
-        up: [f32; 3],
-    },
-}
-
-fn default_up() -> [f32; 3] {
-    [0.0, 1.0, 0.0]
-}
-
-impl DensityDesc {
-    /// Problems on the description's face: (key below `density`, message).
-    pub fn check(&self) -> Vec<(String, String)> {
-        let mut out = Vec::new();
-        let (up, lengths): ([f32; 3], Vec<(&str, f32, bool)>) = match self {
-            DensityDesc::Height {
-                base,
-                scale_height,
-                up,
-            } => (
-                *up,
-                vec![
-                    ("base", *base, false),
-                    ("scale_height", *scale_height, true),
-                ],
-            ),
-            DensityDesc::Layer {
-                top,
-                transition,
-                up,
-            } => (
-                *up,
-                vec![("top", *top, false), ("transition", *transition, true)],
-            ),
-        };
-        for (key, v, positive) in lengths {
-            if !v.is_finite() || v.abs() > MAX_LENGTH {
-                out.push((
-                    key.into(),
-                    format!("must be finite, within ±{MAX_LENGTH} m, got {v}"),
-                ));
-            } else if positive && v < MIN_LENGTH {
-                out.push((
-                    key.into(),
-                    format!("must be at least {MIN_LENGTH} m, got {v}"),
-                ));
-            }
-        }
-        let u = Vec3::from(up);
-        if !(u.is_finite() && u.length() > 1e-6) {
-            out.push((
-                "up".into(),
-                format!("must be a nonzero finite vector, got {up:?}"),
-            ));
-        }
-        out
-    }
-
-    /// The runtime field (the description must have passed [`DensityDesc::check`]).
-    pub fn build(&self) -> Density {
-        match self {
-            DensityDesc::Height {
-                base,
-                scale_height,
-                up,
-            } => Density::Height(Height::new(*base, *scale_height, Vec3::from(*up))),
-            DensityDesc::Layer {
-                top,
-                transition,
-                up,
-            } => Density::Layer(Layer::new(*top, *transition, Vec3::from(*up))),
-        }
-    }
-}
-
 /// Lengths (m) a density accepts: what f32 scene geometry resolves.
-const MAX_LENGTH: f32 = 1e7;
-const MIN_LENGTH: f32 = 1e-4;
+pub(crate) const MAX_LENGTH: f32 = 1e7;
+pub(crate) const MIN_LENGTH: f32 = 1e-4;
 
 /// A medium's density field.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Density {
     /// `rho = 1` everywhere: the homogeneous medium.
     Uniform,
     Height(Height),
     Layer(Layer),
+    /// Samples on a grid (shared: media and scenes are cloned, grids can be large).
+    Grid(Arc<GridField>),
 }
 
 /// A field that varies along one axis only: the density at height `h` and its integral.
@@ -157,6 +72,26 @@ impl Density {
             Density::Uniform => "uniform".into(),
             Density::Height(f) => f.describe(),
             Density::Layer(f) => f.describe(),
+            Density::Grid(g) => g.describe(),
+        }
+    }
+
+    /// Bytes the field keeps (its samples for a grid).
+    pub fn bytes(&self) -> usize {
+        match self {
+            Density::Uniform | Density::Height(_) | Density::Layer(_) => {
+                std::mem::size_of_val(self)
+            }
+            Density::Grid(g) => g.bytes(),
+        }
+    }
+
+    /// `∫_0^s rho` along the ray `o + d s`: `along(o, d).depth(s)`, without building a grid
+    /// ray's pieces (for one-off depths).
+    pub fn depth_to(&self, o: Vec3, d: Vec3, s: f32) -> f32 {
+        match self {
+            Density::Grid(g) => g.depth(o, d, s),
+            Density::Uniform | Density::Height(_) | Density::Layer(_) => self.along(o, d).depth(s),
         }
     }
 
@@ -166,6 +101,7 @@ impl Density {
             Density::Uniform => 1.0,
             Density::Height(f) => rho_at(f, p),
             Density::Layer(f) => rho_at(f, p),
+            Density::Grid(g) => g.at(p),
         }
     }
 
@@ -176,6 +112,7 @@ impl Density {
             Density::Uniform => Along::Identity,
             Density::Height(f) => Along::Height(Vertical::new(*f, o, d)),
             Density::Layer(f) => Along::Layer(Vertical::new(*f, o, d)),
+            Density::Grid(g) => Along::Grid(g.along(o, d)),
         }
     }
 
@@ -196,6 +133,7 @@ impl Density {
         };
         let (a, b) = match self {
             Density::Uniform => (1.0, 1.0),
+            Density::Grid(g) => return g.range(lo, hi),
             Density::Height(f) => {
                 let (l, h) = heights(f.up());
                 f.range(l, h)
@@ -215,11 +153,12 @@ fn rho_at(f: &impl Profile, p: Vec3) -> f32 {
 
 /// The change of variable of one ray (see the module's comment): `depth(s) = ∫_0^s rho` and its
 /// inverse `distance(u)`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum Along {
     Identity,
     Height(Vertical<Height>),
     Layer(Vertical<Layer>),
+    Grid(GridRay),
 }
 
 impl Along {
@@ -237,6 +176,7 @@ impl Along {
             Along::Identity => s,
             Along::Height(v) => v.depth(s),
             Along::Layer(v) => v.depth(s),
+            Along::Grid(g) => g.depth(s),
         }
     }
 
@@ -247,6 +187,7 @@ impl Along {
             Along::Identity => u,
             Along::Height(v) => v.distance(u),
             Along::Layer(v) => v.distance(u),
+            Along::Grid(g) => g.distance(u),
         }
     }
 
@@ -257,6 +198,7 @@ impl Along {
             Along::Identity => 1.0,
             Along::Height(v) => v.rho(s),
             Along::Layer(v) => v.rho(s),
+            Along::Grid(g) => g.rho(s),
         }
     }
 }

@@ -68,14 +68,6 @@ impl MediumDesc {
         }
         out
     }
-
-    /// The density field (uniform when not given).
-    pub fn density(&self) -> crate::medium::Density {
-        self.density.as_ref().map_or(
-            crate::medium::Density::Uniform,
-            crate::medium::DensityDesc::build,
-        )
-    }
 }
 
 fn zero() -> SpectrumRef {

@@ -25,21 +25,22 @@ pub struct GridData {
 /// Why a grid file cannot be used. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum GridFileError {
-    #[error("{file}: cannot read: {message}")]
+    #[error("{}: cannot read: {message}", file.display())]
     Read { file: PathBuf, message: String },
-    #[error("{file}: not a grid file this reader understands: {message}")]
+    #[error("{}: not a grid file this reader understands: {message}", file.display())]
     Format { file: PathBuf, message: String },
-    #[error("{file}: no grid named {name:?}; the file has {available}")]
+    #[error("{}: no grid named {name:?}; the file has {available}", file.display())]
     NoSuchGrid {
         file: PathBuf,
         name: String,
         available: String,
     },
-    #[error("{file}: {message}")]
+    #[error("{}: {message}", file.display())]
     Values { file: PathBuf, message: String },
     #[error(
-        "{file}: the grid needs {bytes} bytes as dense samples, over the budget of {budget} \
-         bytes (media.NAME.density.max_bytes)"
+        "{}: the grid needs {bytes} bytes as dense samples, over the budget of {budget} \
+         bytes (the density's max_bytes)",
+        file.display()
     )]
     TooLarge {
         file: PathBuf,

@@ -1,0 +1,240 @@
+//! A density given by samples on a grid (a Mitsuba `.vol` or an OpenVDB file), placed in the
+//! world by a transform of its unit box or by the box the file gives.
+//!
+//! The field (data.rs gives the sample convention, Mitsuba 3's `gridvolume`): trilinear between
+//! sample centres, clamped in the outer half cells, zero outside the box. Along a ray it is a
+//! polynomial of degree at most 3 in the distance between two crossings of the planes through
+//! sample centres (a product of three functions linear in the distance), so its integral is
+//! exact piece by piece: `ray.rs` fits each piece's cubic from four values and integrates it
+//! in closed form. That keeps the change of variable `u = D(s)` of the closed-form fields
+//! exact here too, at the cost of visiting every cell a ray crosses (docs/media.md).
+
+pub mod data;
+mod ray;
+pub mod vol;
+
+use glam::{DVec3, Mat4, Vec3};
+
+pub use data::{GridData, GridFileError};
+pub use ray::GridRay;
+
+/// A grid placed in the world.
+#[derive(Debug, PartialEq)]
+pub struct GridField {
+    res: [usize; 3],
+    values: Vec<f32>,
+    /// World to index space, where sample `(i, j, k)` sits at `(i, j, k)` and the box spans
+    /// `[-0.5, n - 0.5]` per axis.
+    to_index: Mat4,
+    /// The box's world bounds (of its eight corners).
+    bounds: (Vec3, Vec3),
+    /// Least and greatest sample.
+    min: f32,
+    max: f32,
+    /// Where it came from, for `brume info`.
+    source: String,
+}
+
+/// Why samples cannot make a field.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GridValueError {
+    #[error("sample ({i}, {j}, {k}) is {value}: densities are finite and >= 0")]
+    Bad {
+        i: usize,
+        j: usize,
+        k: usize,
+        value: f32,
+    },
+    #[error("every sample is 0: the medium would be empty")]
+    Empty,
+    #[error("the grid's box is degenerate (a zero scale or no file bounds)")]
+    Placement,
+}
+
+impl GridField {
+    /// The field of `data` times `multiplier`, its unit box mapped to the world by `unit_to_world`
+    /// (or, when None, filling the box the file gives).
+    pub fn new(
+        data: GridData,
+        multiplier: f32,
+        unit_to_world: Option<Mat4>,
+        source: String,
+    ) -> Result<Self, GridValueError> {
+        let [nx, ny, _] = data.res;
+        let mut values = data.values;
+        let (mut min, mut max) = (f32::INFINITY, 0.0f32);
+        for (n, v) in values.iter_mut().enumerate() {
+            if !(v.is_finite() && *v >= 0.0) {
+                let (i, j, k) = (n % nx, (n / nx) % ny, n / (nx * ny));
+                return Err(GridValueError::Bad { i, j, k, value: *v });
+            }
+            *v *= multiplier;
+            (min, max) = (min.min(*v), max.max(*v));
+        }
+        if !(max > 0.0 && max.is_finite()) {
+            return Err(GridValueError::Empty);
+        }
+        let unit = match (unit_to_world, data.bounds) {
+            (Some(m), _) => m,
+            (None, Some((lo, hi))) => Mat4::from_translation(lo) * Mat4::from_scale(hi - lo),
+            (None, None) => return Err(GridValueError::Placement),
+        };
+        let res = Vec3::new(nx as f32, ny as f32, data.res[2] as f32);
+        let to_index =
+            Mat4::from_translation(Vec3::splat(-0.5)) * Mat4::from_scale(res) * unit.inverse();
+        if !(to_index.is_finite() && unit.determinant().abs() > 1e-30) {
+            return Err(GridValueError::Placement);
+        }
+        let corners = (0..8).map(|c| {
+            let u = Vec3::new((c & 1) as f32, ((c >> 1) & 1) as f32, ((c >> 2) & 1) as f32);
+            unit.transform_point3(u)
+        });
+        let bounds = corners.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), p| {
+            (a.min(p), b.max(p))
+        });
+        Ok(Self {
+            res: data.res,
+            values,
+            to_index,
+            bounds,
+            min,
+            max,
+            source,
+        })
+    }
+
+    /// The field in words, for `brume info`.
+    pub fn describe(&self) -> String {
+        let [x, y, z] = self.res;
+        format!(
+            "grid {x} x {y} x {z} from {}, box {} to {}, samples {} to {}",
+            self.source, self.bounds.0, self.bounds.1, self.min, self.max
+        )
+    }
+
+    /// Bytes of samples.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.values.as_slice())
+    }
+
+    /// Least and greatest density over the world box `[lo, hi]` (samples' range; 0 when the
+    /// box reaches outside the grid's).
+    pub fn range(&self, lo: Vec3, hi: Vec3) -> (f32, f32) {
+        let (a, b) = self.bounds;
+        let outside = lo.cmplt(a).any() || hi.cmpgt(b).any();
+        (if outside { 0.0 } else { self.min }, self.max)
+    }
+
+    /// The density at world point `p`.
+    pub fn at(&self, p: Vec3) -> f32 {
+        let q = self.to_index.transform_point3(p).as_dvec3();
+        let n = self.extent();
+        if q.cmplt(DVec3::splat(-0.5)).any() || q.cmpgt(n - 0.5).any() {
+            return 0.0;
+        }
+        self.at_index(q) as f32
+    }
+
+    /// The ray `o + d s` in index space: `(a, b)` with the point at distance `s` at `a + b s`.
+    fn index_ray(&self, o: Vec3, d: Vec3) -> (DVec3, DVec3) {
+        let a = self.to_index.transform_point3(o).as_dvec3();
+        // In f64 from the matrix's columns: `b` scales the distance.
+        let b = self.to_index.transform_vector3(d).as_dvec3();
+        (a, b)
+    }
+
+    fn extent(&self) -> DVec3 {
+        DVec3::new(self.res[0] as f64, self.res[1] as f64, self.res[2] as f64)
+    }
+
+    /// Trilinear value at index-space point `q`, clamped to the outermost sample centres (the
+    /// caller decides whether `q` is in the box).
+    fn at_index(&self, q: DVec3) -> f64 {
+        let [nx, ny, nz] = self.res;
+        let axis = |x: f64, n: usize| -> (usize, usize, f64) {
+            let x = x.clamp(0.0, (n - 1) as f64);
+            let i = (x.floor() as usize).min(n.saturating_sub(2));
+            let j = (i + 1).min(n - 1);
+            (i, j, x - i as f64)
+        };
+        let (x0, x1, fx) = axis(q.x, nx);
+        let (y0, y1, fy) = axis(q.y, ny);
+        let (z0, z1, fz) = axis(q.z, nz);
+        let v = |x: usize, y: usize, z: usize| self.values[(z * ny + y) * nx + x] as f64;
+        let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+        let y0z0 = lerp(v(x0, y0, z0), v(x1, y0, z0), fx);
+        let y1z0 = lerp(v(x0, y1, z0), v(x1, y1, z0), fx);
+        let y0z1 = lerp(v(x0, y0, z1), v(x1, y0, z1), fx);
+        let y1z1 = lerp(v(x0, y1, z1), v(x1, y1, z1), fx);
+        lerp(lerp(y0z0, y1z0, fy), lerp(y0z1, y1z1, fy), fz)
+    }
+
+    /// The distances `[t0, t1]` (t0 >= 0) over which the ray is inside the box, split at every
+    /// crossing of a plane through sample centres: consecutive entries bound the pieces on which
+    /// the density is one cubic. Empty when the ray misses the box.
+    fn breaks(&self, a: DVec3, b: DVec3) -> Vec<f64> {
+        let n = self.extent();
+        let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+        for k in 0..3 {
+            if b[k] == 0.0 {
+                if a[k] < -0.5 || a[k] > n[k] - 0.5 {
+                    return Vec::new();
+                }
+                continue;
+            }
+            let (lo, hi) = ((-0.5 - a[k]) / b[k], (n[k] - 0.5 - a[k]) / b[k]);
+            t0 = t0.max(lo.min(hi));
+            t1 = t1.min(lo.max(hi));
+        }
+        if t0 >= t1 || t0.is_nan() || t1.is_nan() {
+            return Vec::new();
+        }
+        let mut out = vec![t0, t1];
+        for k in 0..3 {
+            if b[k] == 0.0 || n[k] < 2.0 {
+                continue;
+            }
+            let (ea, eb) = (a[k] + b[k] * t0, a[k] + b[k] * t1);
+            let (lo, hi) = (ea.min(eb).max(0.0), ea.max(eb).min(n[k] - 1.0));
+            let mut plane = lo.ceil();
+            while plane <= hi {
+                let t = (plane - a[k]) / b[k];
+                if t > t0 && t < t1 {
+                    out.push(t);
+                }
+                plane += 1.0;
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        out
+    }
+
+    /// The change of variable along the ray `o + d s` (`d` unit).
+    pub fn along(&self, o: Vec3, d: Vec3) -> GridRay {
+        GridRay::new(self, o, d)
+    }
+
+    /// `∫_0^s rho` along the ray `o + d s`, without keeping the pieces.
+    pub fn depth(&self, o: Vec3, d: Vec3, s: f32) -> f32 {
+        let (a, b) = self.index_ray(o, d);
+        let s = s as f64;
+        let breaks = self.breaks(a, b);
+        // Two-point Gauss-Legendre is exact for the cubic of each piece.
+        let g = 0.5 / 3f64.sqrt();
+        let mut total = 0.0;
+        for w in breaks.windows(2) {
+            let (ta, tb) = (w[0], w[1].min(s));
+            if tb <= ta {
+                break;
+            }
+            let (m, h) = (0.5 * (ta + tb), tb - ta);
+            let f = |t: f64| self.at_index(a + b * t);
+            total += 0.5 * h * (f(m - g * h) + f(m + g * h));
+        }
+        total as f32
+    }
+}
+
+#[cfg(test)]
+mod tests;

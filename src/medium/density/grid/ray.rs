@@ -1,0 +1,143 @@
+//! One ray through a grid: the pieces between crossings of the planes through sample centres,
+//! each with its cubic density and the depth at its start, so that `depth(s)` and its inverse
+//! `distance(u)` are a binary search and a closed form (or a safeguarded Newton root of a
+//! monotone quartic) away.
+//!
+//! A piece of length `h` starting at `t` writes its density in `y = 3 (s - t) / h`, `y in
+//! [0, 3]`, as `p(y) = c0 + c1 y + c2 y² + c3 y³`, fitted through its values at `y = 0, 1, 2,
+//! 3` by forward differences (exact: the trilinear field is such a cubic along the piece);
+//! the depth within the piece is `(h / 3) Q(y)` with `Q(y) = ∫_0^y p`.
+
+use glam::Vec3;
+
+use super::GridField;
+
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    t: f64,
+    h: f64,
+    /// Depth at the piece's start.
+    d0: f64,
+    c: [f64; 4],
+}
+
+impl Piece {
+    fn p(&self, y: f64) -> f64 {
+        let c = &self.c;
+        c[0] + y * (c[1] + y * (c[2] + y * c[3]))
+    }
+
+    /// `∫_0^y p`, never negative (rounding of a density that is 0 over the piece).
+    fn q(&self, y: f64) -> f64 {
+        let c = &self.c;
+        (y * (c[0] + y * (c[1] / 2.0 + y * (c[2] / 3.0 + y * c[3] / 4.0)))).max(0.0)
+    }
+
+    /// Depth across the whole piece.
+    fn depth(&self) -> f64 {
+        self.h / 3.0 * self.q(3.0)
+    }
+
+    /// The `y` at which the depth within the piece is `g` (`0 <= g <= depth()`): `Q` is
+    /// nondecreasing, so Newton's steps are kept inside a shrinking bracket.
+    fn solve(&self, g: f64) -> f64 {
+        let target = 3.0 * g / self.h;
+        let (mut lo, mut hi) = (0.0f64, 3.0f64);
+        let whole = self.q(3.0);
+        let mut y = if whole > 0.0 {
+            3.0 * target / whole
+        } else {
+            0.0
+        };
+        for _ in 0..64 {
+            let f = self.q(y) - target;
+            if f > 0.0 {
+                hi = y;
+            } else {
+                lo = y;
+            }
+            let slope = self.p(y);
+            let mut next = if slope > 0.0 { y - f / slope } else { f64::NAN };
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - y).abs() <= 1e-13 || hi - lo <= 1e-13 {
+                return next;
+            }
+            y = next;
+        }
+        y
+    }
+}
+
+/// The pieces of one ray (none where it misses the grid's box).
+#[derive(Clone, Debug)]
+pub struct GridRay {
+    pieces: Vec<Piece>,
+}
+
+impl GridRay {
+    pub(super) fn new(field: &GridField, o: Vec3, d: Vec3) -> Self {
+        let (a, b) = field.index_ray(o, d);
+        let breaks = field.breaks(a, b);
+        let mut pieces = Vec::with_capacity(breaks.len().saturating_sub(1));
+        let mut d0 = 0.0;
+        for w in breaks.windows(2) {
+            let (t, h) = (w[0], w[1] - w[0]);
+            let f = |j: f64| field.at_index(a + b * (t + h * j / 3.0));
+            let (f0, f1, f2, f3) = (f(0.0), f(1.0), f(2.0), f(3.0));
+            let d1 = f1 - f0;
+            let d2 = f2 - 2.0 * f1 + f0;
+            let d3 = f3 - 3.0 * f2 + 3.0 * f1 - f0;
+            let piece = Piece {
+                t,
+                h,
+                d0,
+                c: [f0, d1 - d2 / 2.0 + d3 / 3.0, d2 / 2.0 - d3 / 2.0, d3 / 6.0],
+            };
+            d0 += piece.depth();
+            pieces.push(piece);
+        }
+        Self { pieces }
+    }
+
+    /// The piece containing distance `s`, if any.
+    fn piece_at(&self, s: f64) -> Option<&Piece> {
+        let i = self.pieces.partition_point(|p| p.t <= s);
+        let p = self.pieces.get(i.checked_sub(1)?)?;
+        (s <= p.t + p.h).then_some(p)
+    }
+
+    pub fn depth(&self, s: f32) -> f32 {
+        let s = s as f64;
+        let i = self.pieces.partition_point(|p| p.t <= s);
+        let Some(p) = i.checked_sub(1).and_then(|i| self.pieces.get(i)) else {
+            return 0.0;
+        };
+        let y = (3.0 * (s - p.t) / p.h).min(3.0);
+        (p.d0 + p.h / 3.0 * p.q(y)) as f32
+    }
+
+    pub fn distance(&self, u: f32) -> f32 {
+        let u = u as f64;
+        if u <= 0.0 {
+            return 0.0;
+        }
+        let i = self.pieces.partition_point(|p| p.d0 + p.depth() < u);
+        let Some(p) = self.pieces.get(i) else {
+            // The whole depth, given back as f32 (rounded up), still ends at the last piece.
+            return match self.pieces.last() {
+                Some(p) if u <= (p.d0 + p.depth()) as f32 as f64 => (p.t + p.h) as f32,
+                Some(_) | None => f32::INFINITY,
+            };
+        };
+        let g = (u - p.d0).clamp(0.0, p.depth());
+        (p.t + p.h / 3.0 * p.solve(g)) as f32
+    }
+
+    pub fn rho(&self, s: f32) -> f32 {
+        let s = s as f64;
+        self.piece_at(s)
+            .map_or(0.0, |p| p.p(3.0 * (s - p.t) / p.h).max(0.0) as f32)
+    }
+}
