@@ -7,7 +7,7 @@ use std::sync::Arc;
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::grid::{GridField, GridFileError, vol};
+use super::grid::{GridField, GridFileError, vdb, vol};
 use super::{Density, Height, Layer, MAX_LENGTH, MIN_LENGTH};
 
 /// A medium's `density` as the scene file gives it: `density = { type = "...", ... }`.
@@ -204,6 +204,7 @@ impl DensityDesc {
     fn check_grid(&self) -> Vec<(String, String)> {
         let DensityDesc::Grid {
             file,
+            grid,
             multiplier,
             transform,
             max_bytes,
@@ -218,6 +219,12 @@ impl DensityDesc {
             .any(|x| file.to_lowercase().ends_with(x));
         if !known {
             out.push(("file".into(), format!("a .vol or .vdb file, got {file:?}")));
+        }
+        if file.to_lowercase().ends_with(".vol") && grid != "density" {
+            out.push((
+                "grid".into(),
+                format!("a .vol file holds one unnamed grid: `grid` ({grid:?}) names grids in .vdb files"),
+            ));
         }
         if !(multiplier.is_finite() && *multiplier > 0.0 && *multiplier <= 1e6) {
             out.push((
@@ -254,8 +261,14 @@ impl DensityDesc {
     }
 }
 
-/// The samples of a grid file, by its extension.
+/// The samples of a grid file, by its extension (`check_grid` allowed only these two).
 fn read_grid(path: &Path, grid: &str, budget: u64) -> Result<super::grid::GridData, GridFileError> {
-    let _ = grid;
-    vol::read(path, budget)
+    let vdb = path
+        .extension()
+        .is_some_and(|x| x.eq_ignore_ascii_case("vdb"));
+    if vdb {
+        vdb::read(path, grid, budget)
+    } else {
+        vol::read(path, budget)
+    }
 }

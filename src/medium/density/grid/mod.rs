@@ -11,6 +11,7 @@
 
 pub mod data;
 mod ray;
+pub mod vdb;
 pub mod vol;
 
 use glam::{DVec3, Mat4, Vec3};

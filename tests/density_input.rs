@@ -1,0 +1,148 @@
+//! Issue 27's bad input for density grids, through the CLI: each refused before rendering,
+//! naming the scene file, the line and the key (and the grid file where it is at fault), with
+//! nothing written.
+
+use std::path::Path;
+use std::process::Command;
+
+/// A small fog box whose density is `density`, written into `dir` as `s.toml`.
+fn write_scene(dir: &Path, density: &str) -> std::path::PathBuf {
+    let text = format!(
+        r#"[film]
+bins = 4
+[camera]
+type = "orthographic"
+width = 8
+height = 8
+position = [0, 0, 3]
+look_at = [0, 0, 0]
+[integrator]
+forward_rays = 1000
+passes = 1
+[media.smoke]
+sigma_s = 1.0
+{density}
+[[shapes]]
+type = "box"
+size = [1, 1, 1]
+interior = "smoke"
+[[lights]]
+type = "directional"
+direction = [0, -1, 0]
+irradiance = 1.0
+"#
+    );
+    let p = dir.join("s.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// A one-channel `.vol` of `values` (x fastest) over the unit box.
+fn write_vol(path: &Path, res: [i32; 3], values: &[f32]) {
+    let mut b = b"VOL\x03".to_vec();
+    for i in [1, res[0], res[1], res[2], 1] {
+        b.extend_from_slice(&i.to_le_bytes());
+    }
+    for f in [-0.5f32, -0.5, -0.5, 0.5, 0.5, 0.5] {
+        b.extend_from_slice(&f.to_le_bytes());
+    }
+    values
+        .iter()
+        .for_each(|f| b.extend_from_slice(&f.to_le_bytes()));
+    std::fs::write(path, b).unwrap();
+}
+
+/// Runs `brume render` on the scene with `density` and returns its stderr, asserting it
+/// failed and wrote nothing.
+fn refused(dir: &Path, density: &str) -> String {
+    let scene = write_scene(dir, density);
+    let out = Command::new(env!("CARGO_BIN_EXE_brume"))
+        .args(["render", scene.to_str().unwrap(), "-o", "x.exr", "--quiet"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.ends_with(".toml") && !n.ends_with(".vol"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+    // The scene file, the density's line (line 14) and the key.
+    assert!(err.contains("s.toml:14"), "{err}");
+    err
+}
+
+#[test]
+fn bad_grids_are_refused_before_rendering_at_their_key() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let grid =
+        |file: &str, more: &str| format!(r#"density = {{ type = "grid", file = "{file}"{more} }}"#);
+    let e = refused(d, &grid("missing.vol", ""));
+    assert!(
+        e.contains("media.smoke.density.file") && e.contains("missing.vol"),
+        "{e}"
+    );
+
+    std::fs::write(d.join("junk.vol"), b"not a volume").unwrap();
+    let e = refused(d, &grid("junk.vol", ""));
+    assert!(
+        e.contains("media.smoke.density.file") && e.contains("'VOL'"),
+        "{e}"
+    );
+
+    write_vol(&d.join("neg.vol"), [2, 2, 1], &[0.5, 1.0, -0.25, 0.0]);
+    let e = refused(d, &grid("neg.vol", ""));
+    assert!(
+        e.contains("neg.vol") && e.contains("sample (0, 1, 0) is -0.25"),
+        "{e}"
+    );
+
+    write_vol(&d.join("nan.vol"), [2, 2, 1], &[0.5, f32::NAN, 1.0, 0.0]);
+    let e = refused(d, &grid("nan.vol", ""));
+    assert!(e.contains("sample (1, 0, 0) is NaN"), "{e}");
+
+    write_vol(&d.join("zero.vol"), [2, 2, 1], &[0.0; 4]);
+    let e = refused(d, &grid("zero.vol", ""));
+    assert!(e.contains("every sample is 0"), "{e}");
+
+    write_vol(&d.join("big.vol"), [4, 4, 4], &[1.0; 64]);
+    let e = refused(d, &grid("big.vol", ", max_bytes = 100"));
+    assert!(
+        e.contains("media.smoke.density.max_bytes") && e.contains("256 bytes"),
+        "{e}"
+    );
+
+    let e = refused(d, &grid("big.vol", r#", grid = "temperature""#));
+    assert!(e.contains("media.smoke.density.grid"), "{e}");
+
+    let e = refused(d, &grid("big.txt", ""));
+    assert!(e.contains("a .vol or .vdb file"), "{e}");
+}
+
+/// An OpenVDB grid loads (`brume info` describes it), and a grid name that is not in the file
+/// is refused at `grid`, listing the names the file has.
+#[test]
+fn vdb_grids_load_and_a_wrong_grid_name_is_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let density = |file: &str, grid: &str| {
+        let path = data.join(file);
+        format!(r#"density = {{ type = "grid", file = "{}", grid = "{grid}" }}"#, path.display())
+    };
+    let scene = write_scene(d, &density("vdb_density.vdb", "density"));
+    let out = Command::new(env!("CARGO_BIN_EXE_brume"))
+        .args(["info", scene.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("density grid 5 x 4 x 3 from"), "{text}");
+    let e = refused(d, &density("vdb_grids.vdb", "smoke"));
+    assert!(e.contains("media.smoke.density.grid") && e.contains("no grid named \"smoke\""), "{e}");
+}
