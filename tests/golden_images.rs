@@ -665,6 +665,31 @@ const GOLDEN: &[(&str, &str, &str, u64)] = &[
         "see-through",
         0x14d885ec17faa69c,
     ),
+    // Recorded when grid densities came (issue 27).
+    (
+        "smoke-plume",
+        "spheres-q1",
+        "first-extinction",
+        0xb040d6dae7a62e40,
+    ),
+    (
+        "smoke-plume",
+        "spheres-q1",
+        "see-through",
+        0xac18cf23d0052cc3,
+    ),
+    (
+        "smoke-plume",
+        "spheres-q0.1",
+        "first-extinction",
+        0x98ce8f9802db3a9a,
+    ),
+    (
+        "smoke-plume",
+        "spheres-q0.1",
+        "see-through",
+        0x647135ad5d6bde77,
+    ),
 ];
 
 #[test]
@@ -770,6 +795,7 @@ const GOLDEN_NEE: &[(&str, u64)] = &[
     ("fog-room-laser", 0xc8c751316e5738ca),
     ("glass-sphere-fog", 0xa677fd20aa9cedc6),
     ("laser-mirror", 0xd599a00ae4d0deed),
+    ("smoke-plume", 0x83ef0d451705fdba),
     ("street-fog", 0xdf5b9354a6b2ba4e),
     ("translucent-plate", 0x86fa736dd6735118),
     ("valley-fog", 0x7f94a9b9e3e56414),
