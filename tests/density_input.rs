@@ -133,7 +133,10 @@ fn vdb_grids_load_and_a_wrong_grid_name_is_refused() {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     let density = |file: &str, grid: &str| {
         let path = data.join(file);
-        format!(r#"density = {{ type = "grid", file = "{}", grid = "{grid}" }}"#, path.display())
+        format!(
+            r#"density = {{ type = "grid", file = "{}", grid = "{grid}" }}"#,
+            path.display()
+        )
     };
     let scene = write_scene(d, &density("vdb_density.vdb", "density"));
     let out = Command::new(env!("CARGO_BIN_EXE_brume"))
@@ -141,8 +144,15 @@ fn vdb_grids_load_and_a_wrong_grid_name_is_refused() {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(text.contains("density grid 5 x 4 x 3 from"), "{text}");
     let e = refused(d, &density("vdb_grids.vdb", "smoke"));
-    assert!(e.contains("media.smoke.density.grid") && e.contains("no grid named \"smoke\""), "{e}");
+    assert!(
+        e.contains("media.smoke.density.grid") && e.contains("no grid named \"smoke\""),
+        "{e}"
+    );
 }
