@@ -156,3 +156,47 @@ fn vdb_grids_load_and_a_wrong_grid_name_is_refused() {
         "{e}"
     );
 }
+
+/// A noise density is sampled over its box's shapes (`brume info` names its lattice); bad keys,
+/// a lattice over `max_bytes` and a noise with no box to fill are refused at their keys.
+#[test]
+fn noise_fields_load_and_bad_ones_are_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let noise =
+        r#"density = { type = "noise", scale = 0.5, octaves = 3, contrast = 0.8, seed = 7 }"#;
+    let scene = write_scene(d, noise);
+    let out = Command::new(env!("CARGO_BIN_EXE_brume"))
+        .args(["info", scene.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // 4 samples per finest wavelength (0.125 m) over the 1 m box: 32 per axis.
+    assert!(
+        text.contains("density grid 32 x 32 x 32 from noise (scale 0.5 m"),
+        "{text}"
+    );
+    let e = refused(
+        d,
+        r#"density = { type = "noise", scale = 0.5, octaves = 0 }"#,
+    );
+    assert!(e.contains("media.smoke.density.octaves"), "{e}");
+    let e = refused(
+        d,
+        r#"density = { type = "noise", scale = 0.5, voxel = 0.01, max_bytes = 100000 }"#,
+    );
+    assert!(
+        e.contains("media.smoke.density.voxel") && e.contains("larger `voxel`"),
+        "{e}"
+    );
+    let e = refused(
+        d,
+        r#"density = { type = "noise", scale = 0.5, times = { type = "layer", top = 0.0, transition = -1.0 } }"#,
+    );
+    assert!(e.contains("media.smoke.density.times.transition"), "{e}");
+}

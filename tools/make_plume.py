@@ -129,7 +129,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--res", type=int, nargs=3, default=[48, 96, 48])
     ap.add_argument("--size", type=float, nargs=3, default=[1.0, 2.0, 1.0], help="box size, m")
-    ap.add_argument("--min", type=float, nargs=3, default=[-0.5, 0.0, -0.5], help="box's lower corner in the scene, m")
+    ap.add_argument("--min", type=float, nargs=3, default=[-0.5, 0.001, -0.5], help="box's lower corner in the scene (smoke-plume.toml: 1 mm above the floor), m")
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--occupancy", type=float, default=0.05)
     ap.add_argument("--out", type=Path, default=REPO / "scenes" / "smoke-plume.vol")

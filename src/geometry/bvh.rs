@@ -1,5 +1,7 @@
 //! The scene geometry: every shape's triangles and analytic primitives in one obvhs CWBVH.
 
+mod interior;
+
 use std::time::Duration;
 
 use glam::{Vec2, Vec3, Vec3A};

@@ -56,9 +56,10 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
             &format!("spectra.{name}"),
         )?;
     }
-    let media = media::build_all(b.source, &b.spectra, &b.grid, &d.media)?;
     let materials: Vec<Material> = materials::build_all(&b, &d.materials)?;
     let (geometry, area_lights) = build_shapes(&b, &d.shapes)?;
+    // After the shapes: a noise density is sampled over the box of those holding its medium.
+    let media = media::build_all(b.source, &b.spectra, &b.grid, &d.media, &geometry)?;
     let open = open_media(&geometry, media.len(), b.outside_medium());
     let camera = d.camera.build();
     let mut b = b;

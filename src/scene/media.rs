@@ -5,20 +5,24 @@
 
 use std::collections::BTreeMap;
 
+use glam::Vec3;
+
 use super::desc::MediumDesc;
 use super::error::{KeyText, Origin, SceneError};
 use super::source::Source;
 use super::spectra::SpectrumResolver;
+use crate::geometry::Geometry;
 use crate::medium::{BuiltMedium, Density, Medium, MediumError, MediumParts};
 use crate::spectrum::SpectralGrid;
 
 /// Builds medium `name` of `desc`.
+/// `interior` is the box of the shapes holding it (where a noise density is sampled).
 pub fn build_medium(
     source: Source,
     spectra: &SpectrumResolver,
     grid: &SpectralGrid,
-    name: &str,
-    desc: &MediumDesc,
+    (name, desc): (&str, &MediumDesc),
+    interior: Option<(Vec3, Vec3)>,
 ) -> Result<BuiltMedium, SceneError> {
     let key = format!("media.{name}");
     let ss = match &desc.sigma_s {
@@ -55,7 +59,7 @@ pub fn build_medium(
     let density = match &desc.density {
         None => Density::Uniform,
         Some(d) => d
-            .build(&|f| source.resolve(f))
+            .build(&|f| source.resolve(f), interior)
             .map_err(|e| source.invalid(&format!("{key}.density.{}", e.key), e.message))?,
     };
     Ok(BuiltMedium {
@@ -64,15 +68,20 @@ pub fn build_medium(
     })
 }
 
-/// Every medium of the scene, in name order (their ids).
+/// Every medium of the scene, in name order (their ids), in `geometry`.
 pub fn build_all(
     source: Source,
     spectra: &SpectrumResolver,
     grid: &SpectralGrid,
     media: &BTreeMap<String, MediumDesc>,
+    geometry: &Geometry,
 ) -> Result<Vec<Medium>, SceneError> {
     media
         .iter()
-        .map(|(name, desc)| Ok(build_medium(source, spectra, grid, name, desc)?.medium))
+        .enumerate()
+        .map(|(id, (name, desc))| {
+            let inside = geometry.interior_bounds(id as u32).map(|b| (b.min, b.max));
+            Ok(build_medium(source, spectra, grid, (name, desc), inside)?.medium)
+        })
         .collect()
 }

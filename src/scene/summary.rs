@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use super::desc::MediumDesc;
 use super::loaded::LoadedScene;
 use super::media::build_medium;
 use super::spectra::SpectrumResolver;
@@ -124,7 +125,12 @@ fn media_report(scene: &LoadedScene) -> Vec<String> {
     let spectra = SpectrumResolver::new(source, grid.clone(), &scene.desc.spectra);
     let mut out = Vec::new();
     for (name, desc) in &scene.desc.media {
-        let b = match build_medium(source, &spectra, &grid, name, desc) {
+        // The coefficients only: the density field is reported from the built scene.
+        let plain = MediumDesc {
+            density: None,
+            ..desc.clone()
+        };
+        let b = match build_medium(source, &spectra, &grid, (name, &plain), None) {
             Ok(b) => b,
             Err(e) => {
                 out.push(format!("medium {name}: cannot be built: {e}"));

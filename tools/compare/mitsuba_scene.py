@@ -74,6 +74,8 @@ from pathlib import Path
 
 import numpy as np
 
+import density_media
+
 REPO = Path(__file__).resolve().parents[2]
 
 
@@ -440,6 +442,7 @@ def load(
     laser_radius: float | None = None,
     integrator: str = "volpath",
     spot_profile: str = "ramp",
+    bins: list[int] | None = None,
 ) -> dict:
     """Returns the Mitsuba scene dict for `scene_path` (the variant must already be set).
     `laser_radius` replaces the lasers' radius (a wider cone converges faster in Mitsuba: a
@@ -448,7 +451,10 @@ def load(
     the one meant for media whose extinction varies with wavelength); same max_depth.
     `spot_profile`: "ramp" keeps Mitsuba's own soft edge (linear in the angle; what the grey
     scenes have always been compared with), "exact" gives spots brume's edge (linear in
-    cos theta) through a projected texture (`spot_profile_texture`)."""
+    cos theta) through a projected texture (`spot_profile_texture`).
+    Media with a `density` become `heterogeneous` (density_media.py); `bins` (film bin indices)
+    renders only the light of those bins, with their coefficients in such media: the per-group
+    images of density_media.bin_groups add up to a chromatic scene's image."""
     import mitsuba as mi
 
     if integrator not in INTEGRATORS:
@@ -461,7 +467,10 @@ def load(
     max_depth = desc.get("integrator", {}).get("max_depth", 32)
     d: dict = {"type": "scene", "integrator": {"type": integrator, "max_depth": max_depth + 1}}
     for name, m in desc.get("media", {}).items():
-        d[f"medium_{name}"] = medium(desc, base, m, grid)
+        if "density" in m:
+            d[f"medium_{name}"] = density_media.heterogeneous(mi, desc, base, name, grid, bins)
+        else:
+            d[f"medium_{name}"] = medium(desc, base, m, grid)
 
     boxes = [s for s in desc.get("shapes", []) if s["type"] == "box" and "interior" in s]
 
@@ -497,7 +506,7 @@ def load(
 
     T = mi.ScalarTransform4f
     for i, l in enumerate(desc.get("lights", [])):
-        shape = light_spectrum(desc, base, l.get("spectrum"), grid)
+        shape = density_media.only_bins(light_spectrum(desc, base, l.get("spectrum"), grid), bins)
         kind = l["type"]
         if kind == "directional":
             em = {

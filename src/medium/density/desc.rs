@@ -8,6 +8,7 @@ use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::grid::{GridField, GridFileError, vdb, vol};
+use super::noise::Noise;
 use super::{Density, Height, Layer, MAX_LENGTH, MIN_LENGTH};
 
 /// A medium's `density` as the scene file gives it: `density = { type = "...", ... }`.
@@ -46,6 +47,40 @@ pub enum DensityDesc {
         #[serde(default = "default_max_bytes")]
         max_bytes: u64,
     },
+    /// Patchy fog: `clamp(1 + contrast fbm(x / scale), 0, max)` (noise.rs), times `times`,
+    /// sampled every `voxel` metres over `bounds` (default: the box of the shapes holding the
+    /// medium) and interpolated as a grid.
+    Noise {
+        scale: f32,
+        #[serde(default = "four")]
+        octaves: u32,
+        #[serde(default = "half")]
+        contrast: f32,
+        #[serde(default)]
+        seed: u64,
+        #[serde(default = "two")]
+        max: f32,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        voxel: Option<f32>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        bounds: Option<[[f32; 3]; 2]>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        times: Option<Box<DensityDesc>>,
+        #[serde(default = "default_max_bytes")]
+        max_bytes: u64,
+    },
+}
+
+fn four() -> u32 {
+    4
+}
+
+fn half() -> f32 {
+    0.5
+}
+
+fn two() -> f32 {
+    2.0
 }
 
 /// Where a grid's unit box goes: scale, then rotate (degrees about X, then Y, then Z), then
@@ -106,8 +141,10 @@ fn default_up() -> [f32; 3] {
 impl DensityDesc {
     /// Problems on the description's face: (key below `density`, message).
     pub fn check(&self) -> Vec<(String, String)> {
-        if let DensityDesc::Grid { .. } = self {
-            return self.check_grid();
+        match self {
+            DensityDesc::Grid { .. } => return self.check_grid(),
+            DensityDesc::Noise { .. } => return self.check_noise(),
+            DensityDesc::Height { .. } | DensityDesc::Layer { .. } => {}
         }
         let mut out = Vec::new();
         let (up, lengths): ([f32; 3], Vec<(&str, f32, bool)>) = match self {
@@ -130,7 +167,7 @@ impl DensityDesc {
                 *up,
                 vec![("top", *top, false), ("transition", *transition, true)],
             ),
-            DensityDesc::Grid { .. } => return Vec::new(),
+            DensityDesc::Grid { .. } | DensityDesc::Noise { .. } => return Vec::new(),
         };
         for (key, v, positive) in lengths {
             if !v.is_finite() || v.abs() > MAX_LENGTH {
@@ -157,7 +194,12 @@ impl DensityDesc {
 
     /// The runtime field (the description must have passed [`DensityDesc::check`]); a grid's
     /// file is found by `resolve` (relative to the scene's folder) and read here.
-    pub fn build(&self, resolve: &dyn Fn(&str) -> PathBuf) -> Result<Density, DensityError> {
+    /// `interior` is the box of the shapes holding the medium (a noise field is sampled there).
+    pub fn build(
+        &self,
+        resolve: &dyn Fn(&str) -> PathBuf,
+        interior: Option<(Vec3, Vec3)>,
+    ) -> Result<Density, DensityError> {
         Ok(match self {
             DensityDesc::Height {
                 base,
@@ -197,6 +239,7 @@ impl DensityDesc {
                 })?;
                 Density::Grid(Arc::new(field))
             }
+            DensityDesc::Noise { .. } => self.build_noise(resolve, interior)?,
         })
     }
 
@@ -258,6 +301,148 @@ impl DensityDesc {
             }
         }
         out
+    }
+}
+
+impl DensityDesc {
+    /// A noise field's keys on their face.
+    fn check_noise(&self) -> Vec<(String, String)> {
+        let DensityDesc::Noise {
+            scale,
+            octaves,
+            contrast,
+            max,
+            voxel,
+            bounds,
+            times,
+            max_bytes,
+            ..
+        } = self
+        else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        let mut bad = |key: &str, ok: bool, what: String| {
+            if !ok {
+                out.push((key.to_string(), what));
+            }
+        };
+        let length = |v: f32| v.is_finite() && (MIN_LENGTH..=MAX_LENGTH).contains(&v);
+        let range = format!("{MIN_LENGTH} to {MAX_LENGTH} m");
+        bad(
+            "scale",
+            length(*scale),
+            format!("must be {range}, got {scale}"),
+        );
+        bad(
+            "octaves",
+            (1..=16).contains(octaves),
+            format!("must be 1 to 16, got {octaves}"),
+        );
+        let c_ok = contrast.is_finite() && (0.0..=100.0).contains(contrast);
+        bad(
+            "contrast",
+            c_ok,
+            format!("must be 0 to 100, got {contrast}"),
+        );
+        let m_ok = max.is_finite() && *max > 0.0 && *max <= 1e6;
+        bad("max", m_ok, format!("must be in (0, 1e6], got {max}"));
+        if let Some(v) = voxel {
+            bad("voxel", length(*v), format!("must be {range}, got {v}"));
+        }
+        if let Some([lo, hi]) = bounds {
+            let ok = lo
+                .iter()
+                .chain(hi)
+                .all(|x| x.is_finite() && x.abs() <= MAX_LENGTH)
+                && (0..3).all(|k| lo[k] < hi[k]);
+            bad(
+                "bounds",
+                ok,
+                format!("must be [[min x, y, z], [max x, y, z]] with min < max, got {bounds:?}"),
+            );
+        }
+        bad("max_bytes", *max_bytes > 0, "must be positive".into());
+        if let Some(t) = times {
+            if let DensityDesc::Noise { .. } = **t {
+                out.push((
+                    "times".into(),
+                    "a noise field cannot be times another noise field".into(),
+                ));
+            } else {
+                out.extend(
+                    t.check()
+                        .into_iter()
+                        .map(|(k, m)| (format!("times.{k}"), m)),
+                );
+            }
+        }
+        out
+    }
+
+    /// A noise field sampled over `bounds` or the medium's shapes' box.
+    fn build_noise(
+        &self,
+        resolve: &dyn Fn(&str) -> PathBuf,
+        interior: Option<(Vec3, Vec3)>,
+    ) -> Result<Density, DensityError> {
+        let DensityDesc::Noise {
+            scale,
+            octaves,
+            contrast,
+            seed,
+            max,
+            voxel,
+            bounds,
+            times,
+            max_bytes,
+        } = self
+        else {
+            return Ok(Density::Uniform);
+        };
+        let noise = Noise {
+            scale: *scale as f64,
+            octaves: *octaves,
+            contrast: *contrast as f64,
+            seed: *seed,
+            max: *max as f64,
+        };
+        let times = match times {
+            Some(t) => Some(t.build(resolve, interior).map_err(|e| DensityError {
+                key: "times",
+                message: format!("{}: {}", e.key, e.message),
+            })?),
+            None => None,
+        };
+        let (lo, hi) = match (bounds, interior) {
+            (Some([lo, hi]), _) => (Vec3::from(*lo), Vec3::from(*hi)),
+            (None, Some(b)) => b,
+            (None, None) => {
+                return Err(DensityError {
+                    key: "bounds",
+                    message: "a noise field is sampled over the box of the shapes that hold \
+                              its medium, and none does: give `bounds`"
+                        .into(),
+                });
+            }
+        };
+        let step = voxel.map_or(noise.default_voxel(), |v| v as f64);
+        let data = noise
+            .bake((lo, hi), step, times.as_ref(), *max_bytes)
+            .map_err(|bytes| DensityError {
+                key: "voxel",
+                message: format!(
+                    "samples every {step:.4} m over {lo} to {hi} take {bytes} bytes, over \
+                     max_bytes = {max_bytes}: give a larger `voxel` (or raise max_bytes)"
+                ),
+            })?;
+        let what =
+            format!("noise (scale {scale} m, {octaves} octaves, seed {seed}, voxel {step:.4} m)");
+        let field = GridField::new(data, 1.0, None, what).map_err(|e| DensityError {
+            key: "contrast",
+            message: e.to_string(),
+        })?;
+        Ok(Density::Grid(Arc::new(field)))
     }
 }
 

@@ -19,6 +19,7 @@ mod desc;
 pub mod grid;
 mod height;
 mod layer;
+pub mod noise;
 
 use std::sync::Arc;
 

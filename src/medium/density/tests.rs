@@ -130,7 +130,7 @@ fn descriptions_are_checked() {
         transition: 1.0,
         up: [0.0, 1.0, 0.0],
     }
-    .build(&|f| f.into())
+    .build(&|f| f.into(), None)
     .unwrap()
     .range(Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 3.0, 1.0));
     assert_eq!((lo, hi), (0.0, 1.0));
