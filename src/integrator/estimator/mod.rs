@@ -74,7 +74,7 @@ pub struct ForwardSegment<'a> {
     pub flight: Option<&'a ForwardFlight>,
     /// The change of variable of the flight's medium along the segment (the flight samples
     /// in optical depth at density 1).
-    pub along: Along,
+    pub along: &'a Along,
 }
 
 impl ForwardSegment<'_> {

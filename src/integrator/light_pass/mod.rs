@@ -310,7 +310,7 @@ impl PathStep for ForwardTracer<'_> {
             end
         };
         if self.deposits {
-            self.gather_volumes(Some(m), ray, reach, Some(&flight));
+            self.gather_volumes(Some(m), ray, reach, Some((&flight, &along)));
             let scene = self.scene;
             if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain)
                 && let Some(v) = camera_splat::connect_medium(

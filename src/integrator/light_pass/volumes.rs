@@ -11,16 +11,19 @@ use crate::integrator::record::PRIMARY;
 use crate::integrator::target::Target;
 use crate::medium::{Along, ForwardFlight};
 
+/// The change of variable outside media.
+static IDENTITY: Along = Along::Identity;
+
 impl ForwardTracer<'_> {
     /// Gathers the forward segment `ray` up to `len`, in medium `m` (None: outside media), into
     /// the volumes it meets (the image's, then the sensor paths'); `flight` is the segment's
-    /// flight in a medium.
+    /// flight in a medium, with the medium's change of variable along the ray.
     pub(super) fn gather_volumes(
         &mut self,
         m: Option<u32>,
         ray: &Ray,
         len: f32,
-        flight: Option<&ForwardFlight>,
+        flight: Option<(&ForwardFlight, &Along)>,
     ) {
         let image = Target::Image { light: self.light };
         self.gather_volumes_in((self.gather, image), m, ray, len, flight);
@@ -38,7 +41,7 @@ impl ForwardTracer<'_> {
         m: Option<u32>,
         ray: &Ray,
         len: f32,
-        flight: Option<&ForwardFlight>,
+        flight: Option<(&ForwardFlight, &Along)>,
     ) {
         let integrator = self.integrator;
         match &integrator.estimator {
@@ -59,7 +62,7 @@ impl ForwardTracer<'_> {
         m: Option<u32>,
         ray: &Ray,
         len: f32,
-        flight: Option<&ForwardFlight>,
+        flight: Option<(&ForwardFlight, &Along)>,
     ) {
         let scene = self.scene;
         let n = scene.grid.n;
@@ -83,10 +86,10 @@ impl ForwardTracer<'_> {
             d: ray.d,
             len,
             flux: &self.flux,
-            flight: flight.filter(|f| f.mixture().sigma_t_span() > 0.0),
-            along: m.map_or(Along::Identity, |m| {
-                scene.media[m as usize].density.along(ray.o, ray.d)
-            }),
+            flight: flight
+                .map(|(f, _)| f)
+                .filter(|f| f.mixture().sigma_t_span() > 0.0),
+            along: flight.map_or(&IDENTITY, |(_, along)| along),
         };
         let mut hits = 0u64;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {

@@ -148,19 +148,40 @@ impl GridField {
         DVec3::new(self.res[0] as f64, self.res[1] as f64, self.res[2] as f64)
     }
 
-    /// Trilinear value at index-space point `q`, clamped to the outermost sample centres (the
-    /// caller decides whether `q` is in the box).
-    fn at_index(&self, q: DVec3) -> f64 {
-        let [nx, ny, nz] = self.res;
+    /// The cell of index-space point `q` along each axis: lower and upper sample and the
+    /// fraction between them (clamped to the outermost sample centres).
+    fn cell(&self, q: DVec3) -> [(usize, usize, f64); 3] {
         let axis = |x: f64, n: usize| -> (usize, usize, f64) {
             let x = x.clamp(0.0, (n - 1) as f64);
             let i = (x.floor() as usize).min(n.saturating_sub(2));
             let j = (i + 1).min(n - 1);
             (i, j, x - i as f64)
         };
-        let (x0, x1, fx) = axis(q.x, nx);
-        let (y0, y1, fy) = axis(q.y, ny);
-        let (z0, z1, fz) = axis(q.z, nz);
+        [
+            axis(q.x, self.res[0]),
+            axis(q.y, self.res[1]),
+            axis(q.z, self.res[2]),
+        ]
+    }
+
+    /// Whether the 8 samples around index-space point `q` are all 0 (the density is then 0 in
+    /// the whole cell, where a ray's piece needs no fitting).
+    fn empty_at(&self, q: DVec3) -> bool {
+        let [nx, ny, _] = self.res;
+        let [(x0, x1, _), (y0, y1, _), (z0, z1, _)] = self.cell(q);
+        [z0, z1].iter().all(|&z| {
+            [y0, y1].iter().all(|&y| {
+                let row = (z * ny + y) * nx;
+                self.values[row + x0] == 0.0 && self.values[row + x1] == 0.0
+            })
+        })
+    }
+
+    /// Trilinear value at index-space point `q`, clamped to the outermost sample centres (the
+    /// caller decides whether `q` is in the box).
+    fn at_index(&self, q: DVec3) -> f64 {
+        let [nx, ny, _] = self.res;
+        let [(x0, x1, fx), (y0, y1, fy), (z0, z1, fz)] = self.cell(q);
         let v = |x: usize, y: usize, z: usize| self.values[(z * ny + y) * nx + x] as f64;
         let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
         let y0z0 = lerp(v(x0, y0, z0), v(x1, y0, z0), fx);

@@ -80,10 +80,23 @@ impl GridRay {
     pub(super) fn new(field: &GridField, o: Vec3, d: Vec3) -> Self {
         let (a, b) = field.index_ray(o, d);
         let breaks = field.breaks(a, b);
-        let mut pieces = Vec::with_capacity(breaks.len().saturating_sub(1));
+        let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len().saturating_sub(1));
         let mut d0 = 0.0;
         for w in breaks.windows(2) {
             let (t, h) = (w[0], w[1] - w[0]);
+            if field.empty_at(a + b * (t + 0.5 * h)) {
+                // No smoke in the cell: one zero piece, merged with an empty one before it.
+                match pieces.last_mut() {
+                    Some(p) if p.c == [0.0; 4] => p.h = t + h - p.t,
+                    Some(_) | None => pieces.push(Piece {
+                        t,
+                        h,
+                        d0,
+                        c: [0.0; 4],
+                    }),
+                }
+                continue;
+            }
             let f = |j: f64| field.at_index(a + b * (t + h * j / 3.0));
             let (f0, f1, f2, f3) = (f(0.0), f(1.0), f(2.0), f(3.0));
             let d1 = f1 - f0;
