@@ -5,6 +5,9 @@
 use std::path::Path;
 use std::process::Command;
 
+use brume::medium::density::grid::{GridData, vol};
+use glam::Vec3;
+
 /// A small fog box whose density is `density`, written into `dir` as `s.toml`.
 fn write_scene(dir: &Path, density: &str) -> std::path::PathBuf {
     let text = format!(
@@ -37,19 +40,14 @@ irradiance = 1.0
     p
 }
 
-/// A one-channel `.vol` of `values` (x fastest) over the unit box.
-fn write_vol(path: &Path, res: [i32; 3], values: &[f32]) {
-    let mut b = b"VOL\x03".to_vec();
-    for i in [1, res[0], res[1], res[2], 1] {
-        b.extend_from_slice(&i.to_le_bytes());
-    }
-    for f in [-0.5f32, -0.5, -0.5, 0.5, 0.5, 0.5] {
-        b.extend_from_slice(&f.to_le_bytes());
-    }
-    values
-        .iter()
-        .for_each(|f| b.extend_from_slice(&f.to_le_bytes()));
-    std::fs::write(path, b).unwrap();
+/// A one-channel `.vol` of `values` (x fastest) over the box [-0.5, 0.5]³.
+fn write_vol(path: &Path, res: [usize; 3], values: &[f32]) {
+    let data = GridData {
+        res,
+        values: values.to_vec(),
+        bounds: Some((Vec3::splat(-0.5), Vec3::splat(0.5))),
+    };
+    std::fs::write(path, vol::encode(&data)).unwrap();
 }
 
 /// Runs `brume render` on the scene with `density` and returns its stderr, asserting it

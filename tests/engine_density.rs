@@ -9,8 +9,10 @@ mod common;
 
 use std::f64::consts::PI;
 
+use brume::medium::density::grid::{GridData, vol};
 use brume::spectrum::{SpectralGrid, power_law};
 use common::*;
+use glam::Vec3;
 
 const Z: f64 = 4.0;
 const BINS: usize = 4;
@@ -85,26 +87,20 @@ fn grid_value(i: usize, j: usize, k: usize) -> f64 {
     }
 }
 
-/// The grid's density statement, its `.vol` file written into `dir` (Mitsuba's format, by
-/// hand here: magic, version, encoding, counts, channels, box, samples x fastest).
+/// The grid's density statement, its `.vol` file written into `dir` (the cube is the file's
+/// own box).
 fn grid_density(dir: &std::path::Path) -> String {
     let [nx, ny, nz] = GRID_RES;
-    let mut b = b"VOL\x03".to_vec();
-    for i in [1, nx as i32, ny as i32, nz as i32, 1] {
-        b.extend_from_slice(&i.to_le_bytes());
-    }
-    for f in [-0.5f32, -0.5, -0.5, 0.5, 0.5, 0.5] {
-        b.extend_from_slice(&f.to_le_bytes());
-    }
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                b.extend_from_slice(&(grid_value(i, j, k) as f32).to_le_bytes());
-            }
-        }
-    }
+    let values = (0..nx * ny * nz)
+        .map(|n| grid_value(n % nx, (n / nx) % ny, n / (nx * ny)) as f32)
+        .collect();
+    let data = GridData {
+        res: GRID_RES,
+        values,
+        bounds: Some((Vec3::splat(-0.5), Vec3::splat(0.5))),
+    };
     let path = dir.join("grid.vol");
-    std::fs::write(&path, b).unwrap();
+    std::fs::write(&path, vol::encode(&data)).unwrap();
     format!(
         r#"density = {{ type = "grid", file = "{}" }}"#,
         path.display()

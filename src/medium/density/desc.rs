@@ -4,8 +4,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::{EulerRot, Mat4, Quat, Vec3};
+use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
+
+use crate::geometry::Transform;
 
 use super::grid::{GridField, GridFileError, vdb, vol};
 use super::noise::Noise;
@@ -106,9 +108,7 @@ impl Default for GridTransform {
 impl GridTransform {
     /// Unit box to world.
     pub fn matrix(&self) -> Mat4 {
-        let [rx, ry, rz] = self.rotate.map(f32::to_radians);
-        let q = Quat::from_euler(EulerRot::ZYX, rz, ry, rx);
-        Mat4::from_scale_rotation_translation(self.scale.into(), q, self.translate.into())
+        Transform::new(self.translate.into(), self.rotate.into(), self.scale.into()).matrix()
     }
 }
 
