@@ -179,7 +179,8 @@ fn metal_fresnel(cos: f32, j: usize) -> f32 {
 
 /// With F = 1 the directional albedo is E[G2 / G1] <= 1 whatever alpha and angle: single
 /// scattering only loses energy. Every weight is at most 1 (exactly), and the mean is checked
-/// against an independent quadrature of f |cos| over the sphere.
+/// against an independent quadrature of f |cos| over the sphere, and at alpha = 1 and normal
+/// incidence against its closed form 1 - ln 2.
 #[test]
 fn energy_never_exceeds_one_over_alpha_and_angle() {
     let alphas: [[f32; 2]; 7] = [
@@ -209,6 +210,16 @@ fn energy_never_exceeds_one_over_alpha_and_angle() {
             let mean = sum / n as f64;
             let se = ((sum2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt();
             assert!(mean - Z * se <= 1.0, "{a:?} {theta}: albedo {mean} +- {se}");
+            eprintln!("alpha {a:?} theta {theta}: albedo with F = 1: {mean:.4} +- {se:.4}");
+            // alpha = 1 makes D uniform (1 / pi) and, at normal incidence, G2 = 2c / (1 + c)
+            // for wi at cosine c: E = (1/2) integral_0^1 2c / (1 + c) dc = 1 - ln 2.
+            if a == &[1.0, 1.0] && theta == 0.0 {
+                let z = (mean - (1.0 - 2f64.ln())) / se;
+                assert!(
+                    z.abs() < Z,
+                    "alpha 1 at normal incidence: {mean} vs 1 - ln 2, z {z}"
+                );
+            }
             // Independent: f |cos| integrated over directions (rougher lobes only, where
             // uniform quadrature resolves the lobe).
             if a[0].min(a[1]) >= 0.1 && theta < 89.0 {
