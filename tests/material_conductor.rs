@@ -507,6 +507,28 @@ fn scene_keys_load_and_build() {
     assert!(matches!(c.fresnel, ConductorFresnel::Schlick { .. }));
     let smooth = build(&SCENE.replace("roughness = 0.2", "roughness = 0")).expect("smooth");
     assert!(smooth.materials[0].is_specular());
+    // A [spectra] entry of a metal's name wins: it is a spectrum, so `k` is then required.
+    let shadowed = format!("{SCENE}\n[spectra.gold]\nvalue = 0.5\n");
+    let Err(e) = build(&shadowed) else {
+        panic!("[spectra.gold] without k accepted")
+    };
+    assert!(e.contains("needs `k`"), "{e}");
+    let s = build(&shadowed.replace("eta = \"gold\"", "eta = \"gold\"\nk = 3.0")).expect("k");
+    let Material::Conductor(c) = &s.materials[0] else {
+        panic!()
+    };
+    let ConductorFresnel::Complex { eta, k } = &c.fresnel else {
+        panic!()
+    };
+    assert_eq!((eta[0], k[0]), (0.5, 3.0));
+    // --set reaches the keys, an anisotropic roughness included.
+    let sets = ["materials.metal.roughness=[0.3, 0.1]".to_string()];
+    let s = load_str(SCENE, Path::new("scenes/test.toml"), &sets).expect("--set");
+    let s = brume::scene::build(&s).expect("builds");
+    let Material::Conductor(c) = &s.materials[0] else {
+        panic!()
+    };
+    assert_eq!(c.alpha, Vec2::new(0.3, 0.1));
 }
 
 /// Each refusal names the file, the line and the key.
