@@ -234,8 +234,9 @@ fn energy_never_exceeds_one_over_alpha_and_angle() {
     }
 }
 
-/// Monte-Carlo integral of f(wo, wi) cos over the hemisphere, cosine-distributed directions.
-fn quadrature(m: &Material, wo: Vec3, n: usize, seed: u64) -> (f64, f64) {
+/// Monte-Carlo integral of f(wo, wi) cos over the hemisphere in `bin`, cosine-distributed
+/// directions.
+fn quadrature_bin(m: &Material, wo: Vec3, n: usize, seed: u64, bin: usize) -> (f64, f64) {
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let (mut s, mut s2) = (0.0, 0.0);
     for _ in 0..n {
@@ -247,7 +248,7 @@ fn quadrature(m: &Material, wo: Vec3, n: usize, seed: u64) -> (f64, f64) {
             (1.0 - u1).sqrt() as f32,
         );
         // f cos / (cos / pi)
-        let v = m.eval(wo, wi, &hit())[0] as f64 * PI;
+        let v = m.eval(wo, wi, &hit())[bin] as f64 * PI;
         s += v;
         s2 += v * v;
     }
@@ -256,6 +257,10 @@ fn quadrature(m: &Material, wo: Vec3, n: usize, seed: u64) -> (f64, f64) {
         mean,
         ((s2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt(),
     )
+}
+
+fn quadrature(m: &Material, wo: Vec3, n: usize, seed: u64) -> (f64, f64) {
+    quadrature_bin(m, wo, n, seed, 0)
 }
 
 /// Midpoint quadrature over the hemisphere of g, in s = sqrt(1 - cos theta) (cells crowd
@@ -440,6 +445,42 @@ fn camera_and_forward_sampling_agree() {
         }
     }
     assert_eq!(m.diffuse_probability(wo, &hit()), 0.0);
+}
+
+/// A blend of the conductor and a Lambert surface (glTF's partly metallic materials): its
+/// samples' mean weight matches the quadrature of f cos per bin (|z| < 4), and each sample's
+/// pdf is the blend's.
+#[test]
+fn blend_with_lambert_samples_its_eval() {
+    let m = Material::blend(
+        conductor([0.3, 0.3], metal()),
+        Material::lambert(Spectrum::splat(0.5, NB)),
+        brume::material::BlendWeight::Constant(0.4),
+    );
+    for theta in [20.0, 70.0] {
+        let wo = dir(theta, 2.0);
+        let a = albedo(&m, wo, 100_000, 21);
+        let mut rng = Pcg64Mcg::seed_from_u64(22);
+        for _ in 0..1000 {
+            let u = Vec3::new(rng.random(), rng.random(), rng.random());
+            if let Some(s) = m.sample(wo, &hit(), u) {
+                let p = m.pdf(wo, s.wi, &hit());
+                assert!(
+                    (p - s.pdf).abs() <= 1e-3 * p.max(1e-3),
+                    "pdf {p} vs {}",
+                    s.pdf
+                );
+            }
+        }
+        for (j, (mean, se)) in a.iter().enumerate() {
+            let (q, qse) = quadrature_bin(&m, wo, 400_000, 23 + j as u64, j);
+            let z = (mean - q) / (se * se + qse * qse).sqrt();
+            assert!(
+                z.abs() < Z,
+                "{theta} bin {j}: sampled {mean} vs quadrature {q}, z {z}"
+            );
+        }
+    }
 }
 
 const SCENE: &str = r#"
