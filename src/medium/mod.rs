@@ -36,5 +36,5 @@ pub use phase::{
     Rayleigh, TwoTermHg, hg_draine_fit, intern as phase_intern,
 };
 pub use spectral::power_law;
-pub use tracking::{Majorant, Tracker, Tracking};
+pub use tracking::{Majorant, Tracker, Tracking, TrackingError};
 pub use walk::{MultiSphereWalk, WalkEnd, sample_extinction};

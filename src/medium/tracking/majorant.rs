@@ -39,7 +39,8 @@ impl Majorant {
         let dims = res.map(|n| n.div_ceil(block).max(1));
         let mut max = vec![0.0f32; dims[0] * dims[1] * dims[2]];
         // Samples that reach into block b along an axis: [b B - 1, (b + 1) B], clamped.
-        let reach = |b: usize, n: usize| (b * block).saturating_sub(1)..((b + 1) * block + 1).min(n);
+        let reach =
+            |b: usize, n: usize| (b * block).saturating_sub(1)..((b + 1) * block + 1).min(n);
         for bz in 0..dims[2] {
             for by in 0..dims[1] {
                 for bx in 0..dims[0] {

@@ -37,6 +37,22 @@ pub enum Tracking {
     DeltaGlobal,
 }
 
+/// Why a medium cannot be tracked.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrackingError {
+    #[error(
+        "delta tracking needs a grid or noise density; this medium's is {0}, whose optical \
+         depth is exact in closed form (use tracking = \"exact\")"
+    )]
+    NotGrid(String),
+    #[error(
+        "delta tracking needs a grey medium (one sigma_t in every bin): in a chromatic medium \
+         the channel mixture's weights need the optical depth at every sphere, which tracking \
+         does not compute (use tracking = \"exact\", which is exact in colour)"
+    )]
+    Chromatic,
+}
+
 /// One ray `o + d s` through a tracked medium.
 #[derive(Clone, Copy, Debug)]
 pub struct Tracker<'a> {

@@ -84,9 +84,16 @@ fn the_majorant_bounds_the_field_and_the_dda_covers_the_box() {
             let ray = maj.grid().along(o, d);
             if let Some(end) = last {
                 let (a, b) = (ray.depth(end as f32), ray.depth(end as f32 + 10.0));
-                assert!((a - b).abs() <= 1e-5 * b.max(1.0), "depth beyond the blocks");
+                assert!(
+                    (a - b).abs() <= 1e-5 * b.max(1.0),
+                    "depth beyond the blocks"
+                );
             } else {
-                assert_eq!(ray.depth(100.0), 0.0, "a ray missing every block crosses fog");
+                assert_eq!(
+                    ray.depth(100.0),
+                    0.0,
+                    "a ray missing every block crosses fog"
+                );
             }
         }
     }
@@ -99,7 +106,10 @@ fn the_majorant_bounds_the_field_and_the_dda_covers_the_box() {
 /// equal; escapes are one more bin.
 fn flight_chi2(maj: &Majorant, warp: impl Fn(f32) -> f32, seed: u64) -> f64 {
     let mut rng = Pcg64::seed_from_u64(seed);
-    let (o, d) = (Vec3::new(-2.0, -1.6, -1.2), Vec3::new(1.0, 0.8, 0.55).normalize());
+    let (o, d) = (
+        Vec3::new(-2.0, -1.6, -1.2),
+        Vec3::new(1.0, 0.8, 0.55).normalize(),
+    );
     let (sigma, bins, n) = (1.7f32, 20, 200_000);
     let tr = Tracker::new(maj, o, d);
     let ray = maj.grid().along(o, d);
@@ -141,7 +151,12 @@ fn bound() -> f64 {
 fn delta_tracking_flights_follow_the_exact_depth() {
     for (i, maj) in majorants().iter().enumerate() {
         let chi2 = flight_chi2(maj, |s| s, 11 + i as u64);
-        assert!(chi2 < bound(), "chi2 {chi2} over {} ({} blocks)", bound(), maj.blocks());
+        assert!(
+            chi2 < bound(),
+            "chi2 {chi2} over {} ({} blocks)",
+            bound(),
+            maj.blocks()
+        );
     }
 }
 
@@ -150,7 +165,10 @@ fn delta_tracking_flights_follow_the_exact_depth() {
 fn flights_slightly_too_short_are_caught() {
     let maj = Majorant::new(field(), Some(4));
     let chi2 = flight_chi2(&maj, |s| s * 0.97, 11);
-    assert!(chi2 > 10.0 * bound(), "a 3 % bias went unnoticed: chi2 {chi2}");
+    assert!(
+        chi2 > 10.0 * bound(),
+        "a 3 % bias went unnoticed: chi2 {chi2}"
+    );
 }
 
 /// Ratio tracking's per-bin mean against `e^{-st_l D}` over 3 bins (one of them 4x the
