@@ -34,7 +34,10 @@ fn setup(tracking: &str) -> Setup {
 }
 
 /// Regions: the plume's middle, its top, the wall on either side, the floor.
-const REGIONS: [(&str, (usize, usize, usize, usize)); 5] = [
+/// A pixel rectangle `[x0, x1) x [y0, y1)`.
+type Rect = (usize, usize, usize, usize);
+
+const REGIONS: [(&str, Rect); 5] = [
     ("plume middle", (14, 26, 18, 34)),
     ("plume top", (12, 28, 2, 16)),
     ("wall left", (0, 12, 4, 40)),

@@ -93,7 +93,7 @@ impl Majorant {
             return;
         };
         let (mut t, end) = (t0.max(from), t1.min(to));
-        if !(t < end) {
+        if t >= end || t.is_nan() || end.is_nan() {
             return;
         }
         let bs = self.block as f64;

@@ -91,7 +91,7 @@ impl<'a> Tracker<'a> {
         rng: &mut R,
     ) -> Option<f32> {
         let mut hit = None;
-        if !(sigma > 0.0) {
+        if sigma.is_nan() || sigma <= 0.0 {
             return None;
         }
         let (a, b) = self.ray;
@@ -129,7 +129,7 @@ impl<'a> Tracker<'a> {
     ) -> Spectrum {
         let mut tr = Spectrum::splat(1.0, n);
         let st_max = st.0[..n].iter().copied().fold(0.0f32, f32::max);
-        if !(st_max > 0.0) {
+        if st_max.is_nan() || st_max <= 0.0 {
             return tr;
         }
         let (a, b) = self.ray;
