@@ -185,7 +185,11 @@ fn exit_distance(p: [f64; 3], dir: [f64; 3]) -> f64 {
 /// `L = ∫_0^1 e^{-st D_cam(s)} ss rho(x(s)) p(cos) E e^{-st D_light(x(s))} ds`.
 fn single_scattering(field: Field) -> Vec<f64> {
     let grid = SpectralGrid::new(BINS, 380.0, 780.0);
-    let ss = power_law(1.5, 550.0, 4.0, &grid);
+    single_scattering_of(field, &power_law(1.5, 550.0, 4.0, &grid).0[..BINS])
+}
+
+/// Single scattering with the scattering coefficient `ss` per bin (sigma_a = 0.2).
+fn single_scattering_of(field: Field, ss: &[f32]) -> Vec<f64> {
     let d = unit([0.5, -0.5, -std::f64::consts::FRAC_1_SQRT_2]);
     let back = [-d[0], -d[1], -d[2]];
     let e = 4.0 / 400.0;
@@ -246,6 +250,79 @@ fn fog_bank_matches_single_scattering() {
 fn grid_matches_single_scattering() {
     let dir = tempfile::tempdir().unwrap();
     check(Field::Grid, &grid_density(dir.path()), &CASES);
+}
+
+/// Null-collision transport (`tracking = "delta"`, majorant blocks, and `"delta-global"`) in
+/// the grid, made grey (sigma_s = 1.5 /m in every bin) as tracking requires: the camera walk's
+/// sub-steps and the forward flights by delta tracking, NEE's shadow rays and camera
+/// transmittance by ratio tracking, its distances towards the parallel light by delta
+/// tracking. Same bounds as the exact transport.
+#[test]
+fn tracked_grid_matches_single_scattering() {
+    let dir = tempfile::tempdir().unwrap();
+    let expected = single_scattering_of(Field::Grid, &[1.5; BINS]);
+    let density = grid_density(dir.path());
+    let cases: [(&str, &[&str], f64); 5] = [
+        (
+            "delta spheres q=1",
+            &["integrator.q=1", "media.fog.tracking=\"delta\""],
+            0.01,
+        ),
+        (
+            "delta spheres q=0.3",
+            &["integrator.q=0.3", "media.fog.tracking=\"delta\""],
+            0.01,
+        ),
+        (
+            "delta nee",
+            &["integrator.direct=nee", "media.fog.tracking=\"delta\""],
+            0.0,
+        ),
+        (
+            "global spheres q=0.3",
+            &["integrator.q=0.3", "media.fog.tracking=\"delta-global\""],
+            0.01,
+        ),
+        (
+            "global nee",
+            &[
+                "integrator.direct=nee",
+                "media.fog.tracking=\"delta-global\"",
+            ],
+            0.0,
+        ),
+    ];
+    for (name, sets, floor) in cases {
+        let mut sets = sets.to_vec();
+        sets.push("media.fog.sigma_s=1.5");
+        let s = scene(&fog_text(&density), &sets);
+        let (mean, se) = independent_estimates(&s, 5, 2, (0, 8, 0, 8));
+        assert_bins(name, &mean, &se, &expected, Z, floor);
+    }
+}
+
+/// Tracking is refused, naming the key, where it cannot work: a chromatic medium, and a
+/// density with a closed-form depth.
+#[test]
+fn tracking_is_refused_where_it_does_not_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
+    let sets = vec!["media.fog.tracking=\"delta\"".to_string()];
+    for (density, why) in [
+        (grid_density(dir.path()), "grey"),
+        (HEIGHT.to_string(), "grid or noise"),
+    ] {
+        let loaded = brume::scene::load_str(&fog_text(&density), &scene_dir, &sets);
+        let err = match loaded {
+            Ok(l) => brume::scene::build(&l).err().map(|e| e.to_string()),
+            Err(e) => Some(e.to_string()),
+        }
+        .expect("refused");
+        assert!(
+            err.contains("media.fog.tracking") && err.contains(why),
+            "{err}"
+        );
+    }
 }
 
 /// A density field with cylinders is refused before rendering, naming the keys.

@@ -75,9 +75,11 @@ fn spheres_cylinders_and_truncated_cylinders_agree_with_the_closed_form() {
     for _ in 0..trials {
         for (k, walk) in walks.iter().enumerate() {
             spheres[k].clear();
-            walk.walk(&m, &cam_mix, T, &mut rng, |s, w| spheres[k].push((s, *w)));
+            walk.walk(&m, (&cam_mix, None), T, &mut rng, |s, w| {
+                spheres[k].push((s, *w))
+            });
         }
-        let trunc_len = match sample_extinction(&m, &cam_mix, T, &mut rng) {
+        let trunc_len = match sample_extinction(&m, (&cam_mix, None), T, &mut rng) {
             WalkEnd::Transmitted { .. } => T,
             WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => s,
         };

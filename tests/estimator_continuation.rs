@@ -73,8 +73,8 @@ fn camera(walk: Option<MultiSphereWalk>, paths: usize, seed: u64) -> Acc {
             let seg = if dir > 0.0 { L - x } else { x };
             let mix = Mixture::new(ChannelPick::Throughput, &w, &m, 0.1);
             let end = match &walk {
-                Some(walk) => walk.walk(&m, &mix, seg, &mut rng, |_, _| {}),
-                None => sample_extinction(&m, &mix, seg, &mut rng),
+                Some(walk) => walk.walk(&m, (&mix, None), seg, &mut rng, |_, _| {}),
+                None => sample_extinction(&m, (&mix, None), seg, &mut rng),
             };
             match end {
                 WalkEnd::Transmitted { weight } => {

@@ -19,7 +19,7 @@ use super::settings::GatherMode;
 use super::{Integrator, Radii};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{Along, Mixture, WalkEnd, sample_extinction, sample_scatter};
+use crate::medium::{Along, Mixture, Tracker, WalkEnd, sample_extinction, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -137,7 +137,7 @@ impl<'a> CameraPath<'a> {
         m: u32,
         ray: &Ray,
         (depth, len, along): (f32, f32, &Along),
-        mix: &Mixture,
+        (mix, track): (&Mixture, Option<&Tracker>),
         rng: &mut Rng,
     ) -> WalkEnd {
         let classes = if self.first_extinction() {
@@ -151,6 +151,7 @@ impl<'a> CameraPath<'a> {
             dir: ray.d,
             radius: self.radii.bound(),
             mix,
+            track,
             len: depth,
             first_extinction: self.first_extinction(),
         };
@@ -180,10 +181,14 @@ impl<'a> CameraPath<'a> {
     /// weight `e^{-st_l len} / Tmix(len)` comes with probability `Tmix(len)`, so this is its
     /// expectation: the part behind the segment keeps its mean per bin and loses the coin's
     /// variance, while the segment's volumes (left before the outcome) are unchanged.
-    fn expected_transmission(&mut self, m: u32, depth: f32) -> MediumStep {
-        let tr = self.scene.media[m as usize]
-            .sigma_t
-            .transmittance(depth, self.n);
+    /// In a tracked medium the factor is ratio tracking's estimate of it (`tr`), unbiased per
+    /// bin.
+    fn expected_transmission(&mut self, m: u32, depth: f32, tr: Option<Spectrum>) -> MediumStep {
+        let tr = tr.unwrap_or_else(|| {
+            self.scene.media[m as usize]
+                .sigma_t
+                .transmittance(depth, self.n)
+        });
         if tr.is_zero() {
             return MediumStep::Ended;
         }
@@ -217,12 +222,21 @@ impl PathStep for CameraPath<'_> {
         let mix = self.mixture(m);
         let scene = self.scene;
         let med = &scene.media[m as usize];
-        // Walks and flights run in optical depth at density 1 (uniform media: the distance).
-        let along = med.density.along(ray.o, ray.d);
+        // Walks and flights run in optical depth at density 1 (uniform media: the distance),
+        // or in distance by null collisions in a tracked medium (method note 10).
+        let tracker = med
+            .tracking
+            .as_deref()
+            .map(|t| Tracker::new(t, ray.o, ray.d));
+        let track = tracker.as_ref();
+        let along = match track {
+            None => med.density.along(ray.o, ray.d),
+            Some(_) => Along::Identity,
+        };
         let depth = along.depth(len);
         if !self.gathering {
             // Free flight without gathering: the continuation of a see-through path (note 4).
-            let end = sample_extinction(med, &mix, depth, rng).at_distance(&along, len);
+            let end = sample_extinction(med, (&mix, track), depth, rng).at_distance(&along, len);
             return self.after_walk(end);
         }
         if !self.first_extinction() {
@@ -238,26 +252,30 @@ impl PathStep for CameraPath<'_> {
                 len,
                 mix: &mix,
                 along: &along,
+                track,
             };
             let mut acc = ByLight::new(self.nee.layers);
             direct.medium_segment(self.scene, &seg, rng, &mut acc);
             add(&mut self.nee.medium, self.nee.layers, &acc, &self.w, 1.0);
         }
         let end = match &integrator.estimator {
-            Estimator::Spheres(e) => self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng),
+            Estimator::Spheres(e) => {
+                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
+            }
             Estimator::Cylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
             }
             Estimator::TruncatedCylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
             }
             Estimator::LongCylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), &mix, rng)
+                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
             }
         };
         // An endless segment (a medium without a boundary ahead) keeps the walk's outcome.
         if integrator.settings.expected_transmission && self.first_extinction() && len.is_finite() {
-            return self.expected_transmission(m, depth);
+            let tr = track.map(|t| t.transmittance((0.0, len), &med.sigma_t, self.n, rng));
+            return self.expected_transmission(m, depth, tr);
         }
         self.after_walk(end)
     }

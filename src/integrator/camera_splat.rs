@@ -106,7 +106,14 @@ pub fn connect_medium(
     let tau = shadow::optical_depth(scene, Some(m), to_camera, pr.dist)?;
     let t = shadow::transmittance(&tau, scene.grid.n);
     let med = &scene.media[m as usize];
-    let j = flight.flux_at(flux, along.depth(s)) * med.sigma_s * (e * pr.importance * along.rho(s));
+    // A tracked medium's flight ran in distance (an identity `along`): its density is the
+    // field's at the point (1 in a uniform medium, as the identity's).
+    let rho = if along.is_identity() {
+        med.density.at(x)
+    } else {
+        along.rho(s)
+    };
+    let j = flight.flux_at(flux, along.depth(s)) * med.sigma_s * (e * pr.importance * rho);
     Some((pr.pixel, times_phase(j * t, med, ray.d.dot(pr.to_camera))))
 }
 

@@ -1,4 +1,7 @@
+use std::sync::Arc;
+
 use super::{Density, MediumError, Phase};
+use crate::medium::tracking::{Majorant, Tracking, TrackingError};
 use crate::spectrum::{MAX_BINS, Spectrum};
 
 /// A medium: per-bin scattering and absorption coefficients in 1/m where its density is 1, a
@@ -24,6 +27,9 @@ pub struct Medium {
     pub grey: bool,
     /// Where the medium is: `rho(x)` (method note 10).
     pub density: Density,
+    /// The majorant grid when the medium's transport tracks null collisions (`tracking`),
+    /// None for the exact change of variable.
+    pub tracking: Option<Arc<Majorant>>,
 }
 
 impl Medium {
@@ -78,12 +84,41 @@ impl Medium {
             n,
             grey,
             density: Density::Uniform,
+            tracking: None,
         })
     }
 
     /// The same medium with `density` (coefficients as given are those at `rho = 1`).
     pub fn with_density(self, density: Density) -> Self {
         Self { density, ..self }
+    }
+
+    /// The same medium with its transport by `tracking` (method note 10): delta and ratio
+    /// tracking against a majorant of `block`³ samples (the global maximum for
+    /// `Tracking::DeltaGlobal`), or the exact change of variable. Needs a grid density and a
+    /// grey medium for the tracked kinds (`TrackingError` says which is missing).
+    pub fn with_tracking(self, tracking: Tracking, block: usize) -> Result<Self, TrackingError> {
+        let block = match tracking {
+            Tracking::Exact => {
+                return Ok(Self {
+                    tracking: None,
+                    ..self
+                });
+            }
+            Tracking::Delta => Some(block),
+            Tracking::DeltaGlobal => None,
+        };
+        let Density::Grid(grid) = &self.density else {
+            return Err(TrackingError::NotGrid(self.density.describe()));
+        };
+        if !self.grey {
+            return Err(TrackingError::Chromatic);
+        }
+        let majorant = Arc::new(Majorant::new(grid.clone(), block));
+        Ok(Self {
+            tracking: Some(majorant),
+            ..self
+        })
     }
 
     /// From per-bin extinction (1/m) and single-scattering albedo, the paper's parametrisation:

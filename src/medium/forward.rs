@@ -1,4 +1,4 @@
-use super::{ChannelPick, Medium, Mixture};
+use super::{ChannelPick, Medium, Mixture, Tracker};
 use crate::spectrum::Spectrum;
 use rand::Rng;
 
@@ -47,6 +47,25 @@ impl ForwardFlight {
     ) -> Self {
         let mix = Mixture::new(ChannelPick::Throughput, flux, medium, floor);
         let t = mix.sample_distance(rng.random(), rng.random());
+        Self { mix, t, seg_len }
+    }
+
+    /// The same flight in a tracked grey medium (`medium::tracking`): the collision distance
+    /// (not depth) by delta tracking along `track` over `seg_len`. Its density is the exact
+    /// sampler's, and a grey medium's flux weights do not depend on the depth.
+    #[inline]
+    pub fn tracked<R: Rng + ?Sized>(
+        medium: &Medium,
+        flux: &Spectrum,
+        floor: f32,
+        (seg_len, track): (f32, &Tracker),
+        rng: &mut R,
+    ) -> Self {
+        let mix = Mixture::new(ChannelPick::Throughput, flux, medium, floor);
+        let l0 = mix.pick(rng.random());
+        let t = track
+            .free_flight(0.0, seg_len, mix.rate(l0, 1.0), rng)
+            .unwrap_or(f32::INFINITY);
         Self { mix, t, seg_len }
     }
 

@@ -150,6 +150,12 @@ impl Mixture {
         }
     }
 
+    /// The extinction of bin `l0` times `rate_scale` (the rate of [`Mixture::exp_step`]).
+    #[inline]
+    pub fn rate(&self, l0: usize, rate_scale: f32) -> f32 {
+        self.st.0[l0] * rate_scale
+    }
+
     /// Samples a distance with density `pdf_mix` (two uniforms: bin pick, then exponential).
     #[inline]
     pub fn sample_distance(&self, u_pick: f32, u_dist: f32) -> f32 {

@@ -16,6 +16,7 @@ mod forward;
 mod mixture;
 mod phase;
 mod spectral;
+pub mod tracking;
 mod walk;
 
 pub use build::{
@@ -35,4 +36,5 @@ pub use phase::{
     Rayleigh, TwoTermHg, hg_draine_fit, intern as phase_intern,
 };
 pub use spectral::power_law;
+pub use tracking::{Majorant, Tracker, Tracking, TrackingError};
 pub use walk::{MultiSphereWalk, WalkEnd, sample_extinction};

@@ -24,10 +24,18 @@ pub fn density_report(scene: &Scene, names: &[&str]) -> Vec<String> {
                 Err(e) => format!("unknown ({e})"),
             }
         };
+        let tracking = match &m.tracking {
+            None => "exact optical depth".to_string(),
+            Some(t) => format!(
+                "delta tracking against {} majorant blocks ({} bytes)",
+                t.blocks(),
+                t.bytes()
+            ),
+        };
         out.push(format!(
             "medium {name}: density {}; from {rmin:.4e} to {rmax:.4e} over the scene's bounds; \
              memory: {} bytes; visibility {} at the greatest density, {} at the \
-             least",
+             least; transport: {tracking}",
             m.density.describe(),
             m.density.bytes(),
             mor(rmax),

@@ -62,10 +62,15 @@ pub fn build_medium(
             .build(&|f| source.resolve(f), interior)
             .map_err(|e| source.invalid(&format!("{key}.density.{}", e.key), e.message))?,
     };
-    Ok(BuiltMedium {
-        medium: built.medium.with_density(density),
-        ..built
-    })
+    let block = desc
+        .majorant_block
+        .map_or(crate::medium::tracking::DEFAULT_BLOCK, |b| b as usize);
+    let medium = built
+        .medium
+        .with_density(density)
+        .with_tracking(desc.tracking.unwrap_or_default(), block)
+        .map_err(|e| source.invalid(&format!("{key}.tracking"), e.to_string()))?;
+    Ok(BuiltMedium { medium, ..built })
 }
 
 /// Every medium of the scene, in name order (their ids), in `geometry`.

@@ -125,9 +125,11 @@ fn media_report(scene: &LoadedScene) -> Vec<String> {
     let spectra = SpectrumResolver::new(source, grid.clone(), &scene.desc.spectra);
     let mut out = Vec::new();
     for (name, desc) in &scene.desc.media {
-        // The coefficients only: the density field is reported from the built scene.
+        // The coefficients only: the density field (and its transport) is reported from the
+        // built scene.
         let plain = MediumDesc {
             density: None,
+            tracking: None,
             ..desc.clone()
         };
         let b = match build_medium(source, &spectra, &grid, (name, &plain), None) {

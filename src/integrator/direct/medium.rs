@@ -21,7 +21,8 @@ use crate::geometry::Ray;
 use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
 use crate::light::Anchor;
-use crate::medium::{Along, Mixture};
+use crate::medium::{Along, Medium, Mixture, Tracker};
+use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
 /// One camera segment, as next-event estimation sees it.
@@ -32,8 +33,13 @@ pub struct Segment<'a> {
     /// The segment's channel mixture: its probabilities average the extinction the densities
     /// are built from.
     pub mix: &'a Mixture,
-    /// The segment's change of variable to optical depth at density 1 (`medium::density`).
+    /// The segment's change of variable to optical depth at density 1 (`medium::density`);
+    /// the identity in a tracked medium, where `track` is Some.
     pub along: &'a Along,
+    /// The null-collision tracker of a tracked (grey) medium (`medium::tracking`): distances
+    /// towards a parallel light are then delta-tracking flights, and the camera's
+    /// transmittance is ratio tracking's estimate.
+    pub track: Option<&'a Tracker<'a>>,
 }
 
 impl Direct {
@@ -63,6 +69,10 @@ impl Direct {
             };
             let (o, d) = (seg.ray.o, seg.ray.d);
             let (t, pdf) = match anchor {
+                Anchor::Direction { .. } if seg.track.is_some() => match flight(seg, med, rng) {
+                    Some(t) => (t, FLIGHT),
+                    None => continue,
+                },
                 Anchor::Direction { direction, .. } => {
                     if parallel.as_ref().is_none_or(|(l, _)| *l != j) {
                         parallel = Some((j, parallel_density(scene, seg, direction)));
@@ -78,8 +88,8 @@ impl Direct {
                 }
                 Anchor::Point { position, cone } => {
                     let (a, b) = match cone {
-                        Some((axis, cos_edge)) => {
-                            match cone_interval(o, d, 0.0, seg.len, position, axis, cos_edge) {
+                        Some((axis, cos)) => {
+                            match cone_interval(o, d, 0.0, seg.len, position, axis, cos) {
                                 Some(ab) => ab,
                                 None => continue,
                             }
@@ -90,20 +100,20 @@ impl Direct {
                 }
                 Anchor::Surface { position, .. } => equiangular(o, d, position, 0.0, seg.len, u),
             };
-            if !(pdf > 0.0 && pdf.is_finite()) {
+            if !(pdf > 0.0 && pdf.is_finite() || pdf == FLIGHT) {
                 continue;
             }
             let x = o + d * t;
             let Some(arrival) = anchor.arrival(light, x) else {
                 continue;
             };
-            let Some(tr) = visible(scene, Some(seg.medium), x, arrival.wi, arrival.dist) else {
+            let Some(tr) = visible(scene, Some(seg.medium), (x, arrival.wi), arrival.dist, rng)
+            else {
                 continue;
             };
             // Light travelling along -wi turns towards the camera (-d): cos = wi . d.
             let cos = arrival.wi.dot(d);
-            let camera = med.sigma_t.transmittance(seg.along.depth(t), n);
-            let value = camera * med.sigma_s * arrival.li * tr * seg.along.rho(t);
+            let (value, pdf) = integrand(seg, (t, pdf), (arrival.li, tr), (med, n), rng);
             let sample = if med.phase.varies_per_bin() {
                 value * med.phase_bins(cos) * (inv_samples / (pdf * prob))
             } else {
@@ -113,6 +123,44 @@ impl Direct {
         }
     }
 }
+
+/// The integrand at `t` without the phase function, for light `li` arriving there through
+/// transmittance `tr`, and the density to divide it by: the camera's transmittance, the
+/// scattering coefficient and the density at `t`. A delta-tracking flight's sample (`FLIGHT`)
+/// has these cancelled by its density but for `1 / sigma_t`.
+fn integrand(
+    seg: &Segment,
+    (t, pdf): (f32, f32),
+    (li, tr): (Spectrum, Spectrum),
+    (med, n): (&Medium, usize),
+    rng: &mut Rng,
+) -> (Spectrum, f32) {
+    match seg.track {
+        None => {
+            let camera = med.sigma_t.transmittance(seg.along.depth(t), n);
+            // The exact transport's order of products (its images are the golden ones).
+            let value = camera * med.sigma_s * li * tr * seg.along.rho(t);
+            (value, pdf)
+        }
+        Some(_) if pdf == FLIGHT => (med.sigma_s * li * tr, med.sigma_t.0[0]),
+        Some(track) => {
+            let camera = track.transmittance((0.0, t), &med.sigma_t, n, rng);
+            (camera * med.sigma_s * li * tr * track.rho(t), pdf)
+        }
+    }
+}
+
+/// In a tracked medium, the distance towards a parallel light is a delta-tracking flight: its
+/// density `rho st e^{-st D(t)}` cancels the camera's transmittance and the density in the
+/// integrand (`FLIGHT`).
+fn flight(seg: &Segment, med: &Medium, rng: &mut Rng) -> Option<f32> {
+    let track = seg.track?;
+    track.free_flight(0.0, seg.len, med.sigma_t.0[0], rng)
+}
+
+/// The "density" of a sample drawn by a delta-tracking flight: a marker (no density has it)
+/// for a weight that is `1 / sigma_t` instead (see `medium_segment`).
+const FLIGHT: f32 = -1.0;
 
 fn equiangular(o: Vec3, d: Vec3, c: Vec3, a: f32, b: f32, u: f32) -> (f32, f32) {
     let e = Equiangular::new(o, d, c, a, b);

@@ -50,7 +50,7 @@ impl Direct {
                 .map_or(1.0, |pl| power(prob * pl, cos * FRAC_1_PI));
             let o = spawn(x, normal, arrival.wi).o;
             let dist = arrival.dist - (o - x).length();
-            let Some(tr) = visible(scene, medium, o, arrival.wi, dist) else {
+            let Some(tr) = visible(scene, medium, (o, arrival.wi), dist, rng) else {
                 continue;
             };
             acc.add(j, arrival.li * tr * (cos * mis / prob * inv_samples));

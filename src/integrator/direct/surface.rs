@@ -88,7 +88,7 @@ impl Direct {
             }
             let o = spawn(hit.p, hit.ng, arrival.wi).o;
             let dist = arrival.dist - (o - hit.p).length();
-            let Some(tr) = visible(scene, medium, o, arrival.wi, dist) else {
+            let Some(tr) = visible(scene, medium, (o, arrival.wi), dist, rng) else {
                 continue;
             };
             acc.add(j, f * arrival.li * tr * (cos * mis / prob * inv_samples));

@@ -74,7 +74,7 @@ pub(super) fn whole_segment<R: Rng + ?Sized>(
             weight: cam.medium.sigma_t.transmittance(cam.len, cam.medium.n),
         }
     } else {
-        sample_extinction(cam.medium, cam.mix, cam.len, rng)
+        sample_extinction(cam.medium, (cam.mix, cam.track), cam.len, rng)
     }
 }
 

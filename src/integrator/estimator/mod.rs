@@ -30,7 +30,7 @@ use rand::Rng;
 
 use super::record::{SegmentRecord, VolumeRecord};
 use super::settings::{IntegratorDesc, VolumeKind};
-use crate::medium::{Along, ForwardFlight, Medium, MediumError, Mixture, WalkEnd};
+use crate::medium::{Along, ForwardFlight, Medium, MediumError, Mixture, Tracker, WalkEnd};
 use crate::spectrum::Spectrum;
 
 pub use cylinder::{
@@ -55,7 +55,11 @@ pub struct CameraSegment<'a> {
     pub radius: f32,
     /// The segment's spectral mixture (method note 3).
     pub mix: &'a Mixture,
-    /// Length to the surface or boundary ahead (may be `+inf`).
+    /// The null-collision tracker of a tracked medium (`medium::tracking`), None for the exact
+    /// change of variable.
+    pub track: Option<&'a Tracker<'a>>,
+    /// Length to the surface or boundary ahead (may be `+inf`): in optical depth at density 1
+    /// (the distance in a uniform medium), or the distance itself when `track` is Some.
     pub len: f32,
     /// The camera path ends at its first real extinction (`first-extinction` mode) rather than
     /// scattering on through the medium (`see-through`).

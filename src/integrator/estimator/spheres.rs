@@ -56,9 +56,11 @@ impl VolumeEstimator for Spheres {
         leave: impl FnMut(f32, f32),
     ) -> WalkEnd {
         match self.walks.get(cam.medium_id as usize) {
-            Some(walk) => walk.walk_scaled(cam.medium, cam.mix, cam.len, rng, leave),
+            Some(walk) => walk.walk_scaled(cam.medium, (cam.mix, cam.track), cam.len, rng, leave),
             // Every medium has its walk (`new`): none means no spheres, the path goes on.
-            None => crate::medium::sample_extinction(cam.medium, cam.mix, cam.len, rng),
+            None => {
+                crate::medium::sample_extinction(cam.medium, (cam.mix, cam.track), cam.len, rng)
+            }
         }
     }
 
@@ -242,12 +244,12 @@ mod tests {
                 let seg_len = 1.0 + (i % 7) as f32 * 2.0;
                 let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
                 let mut expected = Vec::new();
-                walk.walk(&med, &mix, seg_len, &mut rng, |s, ws| {
+                walk.walk(&med, (&mix, None), seg_len, &mut rng, |s, ws| {
                     expected.push((s, w * *ws))
                 });
                 let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(i);
                 let mut got = Vec::new();
-                walk.walk_scaled(&med, &mix, seg_len, &mut rng, |s, scale| {
+                walk.walk_scaled(&med, (&mix, None), seg_len, &mut rng, |s, scale| {
                     got.push(VolumeRecord {
                         segment: 0,
                         s,

@@ -41,7 +41,7 @@ impl VolumeEstimator for TruncatedCylinder {
         rng: &mut R,
         leave: impl FnMut(f32, f32),
     ) -> WalkEnd {
-        let end = sample_extinction(cam.medium, cam.mix, cam.len, rng);
+        let end = sample_extinction(cam.medium, (cam.mix, cam.track), cam.len, rng);
         let len = match end {
             WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => s,
             WalkEnd::Transmitted { .. } => cam.len,

@@ -21,7 +21,7 @@ use super::target::Target;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
-use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, sample_scatter};
+use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, Tracker, sample_scatter};
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
@@ -298,9 +298,20 @@ impl PathStep for ForwardTracer<'_> {
         let med = &self.scene.media[m as usize];
         let floor = self.integrator.settings.channel_floor;
         // The flight runs in optical depth at density 1 (the distance in a uniform medium) and
-        // ends at that depth's distance.
-        let along = med.density.along(ray.o, ray.d);
-        let flight = ForwardFlight::sample(med, &self.flux, floor, along.depth(len), rng);
+        // ends at that depth's distance; in a tracked medium it is a delta-tracking flight in
+        // distance (method note 10) and the change of variable is the identity.
+        let (along, flight) = match med.tracking.as_deref() {
+            None => {
+                let along = med.density.along(ray.o, ray.d);
+                let flight = ForwardFlight::sample(med, &self.flux, floor, along.depth(len), rng);
+                (along, flight)
+            }
+            Some(t) => {
+                let track = Tracker::new(t, ray.o, ray.d);
+                let flight = ForwardFlight::tracked(med, &self.flux, floor, (len, &track), rng);
+                (Along::Identity, flight)
+            }
+        };
         let end = along.distance(flight.end()).min(len);
         // Paper eq. 3 integrates the forward attenuation deterministically: it needs the whole
         // segment, not the sampled flight.

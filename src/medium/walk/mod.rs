@@ -1,4 +1,4 @@
-use super::{Along, Medium, MediumError, MixEval, Mixture};
+use super::{Along, Medium, MediumError, MixEval, Mixture, Tracker};
 use crate::spectrum::Spectrum;
 use rand::Rng;
 
@@ -77,7 +77,8 @@ impl MultiSphereWalk {
         self.q
     }
 
-    /// Walks one segment of length `seg_len` (may be `+inf`). For every sphere, at distance `s`
+    /// Walks one segment of length `seg_len` (may be `+inf`): its optical depth at density 1,
+    /// or, with a `track`er (a grey medium tracked by null collisions), its distance. For every sphere, at distance `s`
     /// in `[0, seg_len)`, calls `on_sphere(s, w)` with the per-bin sphere weight
     /// `w_l = q ss_l e^{-st_l s} / pdf_mix(s)`; the engine multiplies it by the path throughput
     /// and by the sphere's reading `f Phi_l / (pi R^2)`. The sphere at a real extinction is
@@ -86,7 +87,7 @@ impl MultiSphereWalk {
     pub fn walk<R, F>(
         &self,
         medium: &Medium,
-        mix: &Mixture,
+        (mix, track): (&Mixture, Option<&Tracker>),
         seg_len: f32,
         rng: &mut R,
         mut on_sphere: F,
@@ -95,7 +96,7 @@ impl MultiSphereWalk {
         R: Rng + ?Sized,
         F: FnMut(f32, &Spectrum),
     {
-        self.walk_eval(medium, mix, seg_len, rng, |s, e| {
+        self.walk_eval(medium, (mix, track), seg_len, rng, |s, e| {
             let w = medium.sigma_s * e.tr * (self.q / e.pdf);
             on_sphere(s, &w);
         })
@@ -110,7 +111,7 @@ impl MultiSphereWalk {
     pub fn walk_scaled<R, F>(
         &self,
         medium: &Medium,
-        mix: &Mixture,
+        (mix, track): (&Mixture, Option<&Tracker>),
         seg_len: f32,
         rng: &mut R,
         mut on_sphere: F,
@@ -119,7 +120,7 @@ impl MultiSphereWalk {
         R: Rng + ?Sized,
         F: FnMut(f32, f32),
     {
-        self.walk_eval(medium, mix, seg_len, rng, |s, e| {
+        self.walk_eval(medium, (mix, track), seg_len, rng, |s, e| {
             on_sphere(s, self.q / e.pdf)
         })
     }
@@ -128,7 +129,7 @@ impl MultiSphereWalk {
     fn walk_eval<R, F>(
         &self,
         medium: &Medium,
-        mix: &Mixture,
+        (mix, track): (&Mixture, Option<&Tracker>),
         seg_len: f32,
         rng: &mut R,
         mut on_sphere: F,
@@ -140,7 +141,15 @@ impl MultiSphereWalk {
         let l0 = mix.pick(rng.random());
         let mut s = 0.0f32;
         loop {
-            s += mix.exp_step(l0, self.rate_scale, rng.random());
+            s = match track {
+                // Sub-steps at rate `st_l0 / q` in optical depth: exponential steps in `u`.
+                None => s + mix.exp_step(l0, self.rate_scale, rng.random()),
+                // The same sub-step process by null collisions, in distance (method note 10):
+                // a grey medium's weights below do not depend on the depth.
+                Some(t) => t
+                    .free_flight(s, seg_len, mix.rate(l0, self.rate_scale), rng)
+                    .unwrap_or(f32::INFINITY),
+            };
             if s >= seg_len || s.is_nan() {
                 return transmitted(mix, seg_len);
             }
@@ -163,11 +172,18 @@ impl MultiSphereWalk {
 #[inline]
 pub fn sample_extinction<R: Rng + ?Sized>(
     medium: &Medium,
-    mix: &Mixture,
+    (mix, track): (&Mixture, Option<&Tracker>),
     seg_len: f32,
     rng: &mut R,
 ) -> WalkEnd {
-    let s = mix.sample_distance(rng.random(), rng.random());
+    let s = match track {
+        None => mix.sample_distance(rng.random(), rng.random()),
+        Some(t) => {
+            let l0 = mix.pick(rng.random());
+            t.free_flight(0.0, seg_len, mix.rate(l0, 1.0), rng)
+                .unwrap_or(f32::INFINITY)
+        }
+    };
     if s >= seg_len || s.is_nan() {
         return transmitted(mix, seg_len);
     }

@@ -52,7 +52,7 @@ fn run(walk: &MultiSphereWalk, pick: ChannelPick, rays: usize, seed: u64) -> (Ac
     let mut spheres = 0u64;
     for _ in 0..rays {
         let mut est = [0.0f64; N];
-        let end = walk.walk(&m, &mix, T, &mut rng, |s, w| {
+        let end = walk.walk(&m, (&mix, None), T, &mut rng, |s, w| {
             spheres += 1;
             for l in 0..N {
                 est[l] += w[l] as f64 * reading(l, s);
@@ -102,7 +102,7 @@ fn mean_sphere_count_matches_the_formula() {
             let mut acc = Acc::new(1);
             for _ in 0..200_000 {
                 let mut k = 0.0;
-                walk.walk(&m, &mix, T, &mut rng, |_, _| k += 1.0);
+                walk.walk(&m, (&mix, None), T, &mut rng, |_, _| k += 1.0);
                 acc.add(&[k]);
             }
             let expected: f64 = (0..N)
@@ -124,7 +124,7 @@ fn mean_sphere_count_matches_the_formula() {
     let mut acc = Acc::new(1);
     for _ in 0..100_000 {
         let mut k = 0.0;
-        let end = walk.walk(&m, &mix, f32::INFINITY, &mut rng, |_, _| k += 1.0);
+        let end = walk.walk(&m, (&mix, None), f32::INFINITY, &mut rng, |_, _| k += 1.0);
         assert!(!matches!(end, WalkEnd::Transmitted { .. }));
         acc.add(&[k]);
     }
@@ -169,7 +169,7 @@ fn truncated_cylinder_weights_are_unbiased_in_every_bin() {
         let mut rng = Pcg64Mcg::seed_from_u64(seed);
         let mut acc = Acc::new(N);
         for _ in 0..100_000 {
-            let end = sample_extinction(&m, &mix, T, &mut rng);
+            let end = sample_extinction(&m, (&mix, None), T, &mut rng);
             let (len, surface) = match end {
                 WalkEnd::Transmitted { weight } => (T, Some(weight)),
                 WalkEnd::Scattered { s, .. } | WalkEnd::Absorbed { s } => (s, None),

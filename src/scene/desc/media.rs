@@ -33,6 +33,13 @@ pub struct MediumDesc {
     /// values at density 1); uniform when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<crate::medium::DensityDesc>,
+    /// How transport integrates the density: `"exact"` (default), `"delta"` (delta and ratio
+    /// tracking against a majorant grid) or `"delta-global"` (against the global maximum).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracking: Option<crate::medium::Tracking>,
+    /// Samples per side of the majorant grid's blocks (`tracking = "delta"`; default 8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub majorant_block: Option<u32>,
 }
 
 impl MediumDesc {
@@ -59,6 +66,14 @@ impl MediumDesc {
             self.droplets.as_ref(),
             exists,
         );
+        if let Some(b) = self.majorant_block
+            && !(1..=4096).contains(&b)
+        {
+            out.push((
+                "majorant_block".into(),
+                format!("{b} samples: a block has 1 to 4096 samples per side"),
+            ));
+        }
         if let Some(d) = &self.density {
             out.extend(
                 d.check()

@@ -196,21 +196,9 @@ impl GridField {
     /// the density is one cubic. Empty when the ray misses the box.
     fn breaks(&self, a: DVec3, b: DVec3) -> Vec<f64> {
         let n = self.extent();
-        let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
-        for k in 0..3 {
-            if b[k] == 0.0 {
-                if a[k] < -0.5 || a[k] > n[k] - 0.5 {
-                    return Vec::new();
-                }
-                continue;
-            }
-            let (lo, hi) = ((-0.5 - a[k]) / b[k], (n[k] - 0.5 - a[k]) / b[k]);
-            t0 = t0.max(lo.min(hi));
-            t1 = t1.min(lo.max(hi));
-        }
-        if t0 >= t1 || t0.is_nan() || t1.is_nan() {
+        let Some((t0, t1)) = self.box_interval(a, b) else {
             return Vec::new();
-        }
+        };
         let mut out = vec![t0, t1];
         for k in 0..3 {
             if b[k] == 0.0 || n[k] < 2.0 {
@@ -230,6 +218,44 @@ impl GridField {
         out.sort_by(f64::total_cmp);
         out.dedup();
         out
+    }
+
+    /// The distances `[t0, t1]` (`t0 >= 0`) over which the index-space ray `a + b t` is inside
+    /// the box, or None when it misses it.
+    pub(crate) fn box_interval(&self, a: DVec3, b: DVec3) -> Option<(f64, f64)> {
+        let n = self.extent();
+        let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+        for k in 0..3 {
+            if b[k] == 0.0 {
+                if a[k] < -0.5 || a[k] > n[k] - 0.5 {
+                    return None;
+                }
+                continue;
+            }
+            let (lo, hi) = ((-0.5 - a[k]) / b[k], (n[k] - 0.5 - a[k]) / b[k]);
+            t0 = t0.max(lo.min(hi));
+            t1 = t1.min(lo.max(hi));
+        }
+        (t0 < t1 && !t0.is_nan() && !t1.is_nan()).then_some((t0, t1))
+    }
+
+    /// The ray `o + d s` in index space (see `index_ray`), for the majorant grid's traversal.
+    pub(crate) fn ray_in_index(&self, o: Vec3, d: Vec3) -> (DVec3, DVec3) {
+        self.index_ray(o, d)
+    }
+
+    /// Samples per axis and the samples themselves (x fastest), for the majorant grid.
+    pub(crate) fn samples(&self) -> ([usize; 3], &[f32]) {
+        (self.res, &self.values)
+    }
+
+    /// The density at index-space point `q`, 0 outside the box.
+    pub(crate) fn at_index_in_box(&self, q: DVec3) -> f64 {
+        let n = self.extent();
+        if q.cmplt(DVec3::splat(-0.5)).any() || q.cmpgt(n - 0.5).any() {
+            return 0.0;
+        }
+        self.at_index(q)
     }
 
     /// The change of variable along the ray `o + d s` (`d` unit).
