@@ -13,6 +13,7 @@ mod check;
 pub mod density_report;
 pub mod desc;
 mod error;
+mod gltf;
 mod lights;
 mod lines;
 mod load;
@@ -34,6 +35,7 @@ pub use build::{LARGE_RADIUS, build, build_integrator, build_with_warnings, film
 pub use camera::{MAX_PIXELS, MAX_SIDE};
 pub use check::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_SIDE};
 pub use error::{Origin, SceneError, SceneWarning};
+pub use gltf::{GltfReport, ImportDesc};
 pub use lights::{MAX_IRRADIANCE, MAX_POWER};
 pub use load::{load, load_str};
 pub use loaded::LoadedScene;

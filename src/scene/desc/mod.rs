@@ -18,6 +18,7 @@ use toml::Spanned;
 use toml::de::DeValue;
 
 pub use super::camera::{CameraDesc, Projection};
+pub use super::gltf::ImportDesc;
 pub use super::lights::{
     DirectionalDesc, LaserDesc, LightCommon, LightDesc, LightKind, PointDesc, SpotDesc,
 };
@@ -29,8 +30,8 @@ pub use super::sensors::{
     IlluminanceSensorDesc, LuminanceSensorDesc, SensorCommon, SensorDesc, SensorKindDesc,
 };
 pub use super::shapes::{
-    BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
-    TransformDesc,
+    BoxDesc, DiscDesc, GltfDesc, MeshDesc, QuadDesc, SceneRef, ShapeCommon, ShapeDesc,
+    ShapeKindDesc, SphereDesc, TransformDesc,
 };
 pub use super::spectrum_desc::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
 pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
@@ -54,6 +55,9 @@ pub struct SceneDesc {
     pub sensors: Vec<SensorDesc>,
     /// Name of the medium filling all space outside every shape (none = vacuum).
     pub medium: Option<String>,
+    /// What glTF shapes bring besides meshes and materials.
+    #[serde(skip_serializing_if = "ImportDesc::is_default")]
+    pub import: ImportDesc,
 }
 
 /// Why the table of `section` (`lights`, `shapes`, `materials`, `sensors`) cannot be read, with the key
