@@ -33,8 +33,10 @@ pub fn read_indices(f: &GltfFile, acc: &gltf::Accessor, at: &str) -> Result<Vec<
     let allowed = [DataType::U8, DataType::U16, DataType::U32];
     check_kind(acc, Dimensions::Scalar, &allowed, at)?;
     let t = acc.data_type();
+    // Sizes are checked before anything is allocated.
+    let elements = element_bytes(f, acc, at)?;
     let mut out = Vec::with_capacity(acc.count());
-    for e in element_bytes(f, acc, at)? {
+    for e in elements {
         out.push(match t {
             DataType::U8 => e[0] as u32,
             DataType::U16 => u16::from_le_bytes([e[0], e[1]]) as u32,
