@@ -5,9 +5,11 @@
 //! side (judged by the geometric normal, so shading normals cannot leak light through).
 
 mod blend;
+mod conductor;
 mod dielectric;
 mod fresnel;
 mod glossy;
+mod metals;
 mod texture;
 
 use std::f32::consts::FRAC_1_PI;
@@ -20,9 +22,11 @@ use crate::geometry::sampling::{Frame, cosine_hemisphere};
 use crate::spectrum::Spectrum;
 
 pub use blend::{Blend, BlendWeight};
+pub use conductor::{Conductor, ConductorFresnel, SMOOTH_ALPHA};
 pub use dielectric::Dielectric;
-pub use fresnel::{fresnel_dielectric, reflect, refract, schlick};
+pub use fresnel::{fresnel_conductor, fresnel_dielectric, reflect, refract, schlick};
 pub use glossy::{Glossy, MIN_ROUGHNESS};
+pub use metals::{is_metal, metal_index, metal_names};
 pub use texture::{Encoding, Texture, TextureError, Wrap};
 
 /// Which lobe produced a sample; the integrator gathers only at diffuse events.
@@ -83,6 +87,9 @@ pub enum Material {
         reflectance: Spectrum,
     },
     Glossy(Glossy),
+    /// A metal: GGX microfacet reflection with a spectral Fresnel factor (boxed: its two
+    /// spectra would double every material's size).
+    Conductor(Box<Conductor>),
     Dielectric(Dielectric),
     /// (1 - w) first + w second.
     Blend(Box<Blend>),
@@ -138,6 +145,14 @@ impl Material {
         Material::Glossy(Glossy::new(albedo.into(), specular_ior, roughness, n_bins))
     }
 
+    /// GGX alphas along the two tangent axes (equal: isotropic; both below [`SMOOTH_ALPHA`]: a
+    /// delta mirror) and the Fresnel factor's source, over the scene's `n_bins`.
+    pub fn conductor(alpha: [f32; 2], fresnel: ConductorFresnel, n_bins: usize) -> Material {
+        Material::Conductor(Box::new(Conductor::new(
+            alpha[0], alpha[1], fresnel, n_bins,
+        )))
+    }
+
     /// `ior` per bin (constant => no dispersion) over the scene's `n_bins`.
     pub fn dielectric(ior: Spectrum, n_bins: usize) -> Material {
         Material::Dielectric(Dielectric::new(ior, n_bins))
@@ -156,7 +171,10 @@ impl Material {
         match self {
             Material::Dielectric(d) => d.dispersive,
             Material::Blend(b) => b.first.is_dispersive() || b.second.is_dispersive(),
-            Material::Lambert { .. } | Material::Mirror { .. } | Material::Glossy(_) => false,
+            Material::Lambert { .. }
+            | Material::Mirror { .. }
+            | Material::Glossy(_)
+            | Material::Conductor(_) => false,
         }
     }
 
@@ -164,6 +182,7 @@ impl Material {
     pub fn is_specular(&self) -> bool {
         match self {
             Material::Mirror { .. } | Material::Dielectric(_) => true,
+            Material::Conductor(c) => c.smooth,
             Material::Blend(b) => b.first.is_specular() && b.second.is_specular(),
             Material::Lambert { .. } | Material::Glossy(_) => false,
         }
@@ -174,6 +193,7 @@ impl Material {
     pub fn has_glossy(&self) -> bool {
         match self {
             Material::Glossy(_) => true,
+            Material::Conductor(c) => !c.smooth,
             Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => false,
             Material::Blend(b) => b.first.has_glossy() || b.second.has_glossy(),
         }
@@ -183,7 +203,10 @@ impl Material {
     pub fn has_nondiffuse(&self) -> bool {
         match self {
             Material::Lambert { .. } => false,
-            Material::Mirror { .. } | Material::Glossy(_) | Material::Dielectric(_) => true,
+            Material::Mirror { .. }
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Dielectric(_) => true,
             Material::Blend(b) => b.first.has_nondiffuse() || b.second.has_nondiffuse(),
         }
     }
@@ -201,6 +224,7 @@ impl Material {
                     None => Spectrum::ZERO,
                 }
             }
+            Material::Conductor(c) => c.eval(wo, wi, hit),
             Material::Mirror { .. } | Material::Dielectric(_) => Spectrum::ZERO,
             Material::Blend(b) => b.eval(wo, wi, hit),
         }
@@ -218,6 +242,7 @@ impl Material {
                 let pd = g.diffuse_probability(lo.z, hit.uv);
                 pd * li.z * FRAC_1_PI + (1.0 - pd) * g.pdf_specular(lo, li)
             }),
+            Material::Conductor(c) => c.pdf(wo, wi, hit),
             Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
             Material::Blend(b) => b.pdf(wo, wi, hit),
         }
@@ -277,6 +302,7 @@ impl Material {
                 })
             }
             Material::Mirror { .. } => self.sample_nondiffuse(wo, hit, u),
+            Material::Conductor(c) => c.sample(wo, hit, Vec2::new(u.x, u.y)),
             Material::Dielectric(d) => d.sample(wo, hit, u, false),
             Material::Blend(b) => b.sample(wo, hit, u),
         }
@@ -290,7 +316,7 @@ impl Material {
                 Some(f) => g.diffuse_probability(f.to_local(wo).z.max(0.0), hit.uv),
                 None => 0.0,
             },
-            Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
+            Material::Mirror { .. } | Material::Conductor(_) | Material::Dielectric(_) => 0.0,
             Material::Blend(b) => b.diffuse_probability(wo, hit),
         }
     }
@@ -310,7 +336,9 @@ impl Material {
                 Some((lo, li)) => g.f_diffuse(lo, li, hit.uv),
                 None => Spectrum::ZERO,
             },
-            Material::Mirror { .. } | Material::Dielectric(_) => Spectrum::ZERO,
+            Material::Mirror { .. } | Material::Conductor(_) | Material::Dielectric(_) => {
+                Spectrum::ZERO
+            }
             Material::Blend(b) => b.eval_diffuse(wo, wi, hit),
         }
     }
@@ -328,6 +356,7 @@ impl Material {
                     None => Spectrum::ZERO,
                 }
             }
+            Material::Conductor(c) => c.eval(wo, wi, hit),
             Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => {
                 Spectrum::ZERO
             }
@@ -343,6 +372,7 @@ impl Material {
             Material::Glossy(g) => side_frame(wo, hit)
                 .and_then(|f| reflects(wo, wi, hit, &f))
                 .map_or(0.0, |(lo, li)| g.pdf_specular(lo, li)),
+            Material::Conductor(c) => c.pdf(wo, wi, hit),
             Material::Lambert { .. } | Material::Mirror { .. } | Material::Dielectric(_) => 0.0,
             Material::Blend(b) => b.pdf_nondiffuse(wo, wi, hit),
         }
@@ -387,6 +417,7 @@ impl Material {
                     kind: LobeKind::Glossy,
                 })
             }
+            Material::Conductor(c) => c.sample(wo, hit, Vec2::new(u.x, u.y)),
             Material::Dielectric(d) => d.sample(wo, hit, u, true),
             Material::Blend(b) => b.sample_nondiffuse(wo, hit, u),
         }

@@ -186,11 +186,7 @@ impl<'a> Checker<'a> {
                 }
             }
             SpectrumRef::Named(n) => {
-                let file = n.split(':').next().unwrap_or(n);
-                if !self.names.spectra.contains_key(n)
-                    && !is_builtin(n)
-                    && !self.source.resolve(file).is_file()
-                {
+                if !self.names_spectrum(n) {
                     self.fail(
                         key,
                         format!(
@@ -201,6 +197,15 @@ impl<'a> Checker<'a> {
                 }
             }
         }
+    }
+
+    /// Whether `name` is a spectrum in [spectra], a built-in, or a CSV file (before any
+    /// `:column`).
+    pub fn names_spectrum(&self, name: &str) -> bool {
+        let file = name.split(':').next().unwrap_or(name);
+        self.names.spectra.contains_key(name)
+            || is_builtin(name)
+            || self.source.resolve(file).is_file()
     }
 
     /// An emission spectrum (a light's `spectrum`, a shape's `emit`): any reference, lines

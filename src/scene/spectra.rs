@@ -28,6 +28,11 @@ impl<'a> SpectrumResolver<'a> {
         }
     }
 
+    /// Whether the scene's [spectra] defines `name` (which then wins over built-in names).
+    pub fn defines(&self, name: &str) -> bool {
+        self.named.contains_key(name)
+    }
+
     fn error(&self, key: &str, message: String) -> SceneError {
         self.source.invalid(key, message)
     }

@@ -23,8 +23,8 @@ pub use super::lights::{
     DirectionalDesc, LaserDesc, LightCommon, LightDesc, LightKind, PointDesc, SpotDesc,
 };
 pub use super::materials::{
-    BlendDesc, DielectricDesc, GlossyDesc, LambertDesc, MaterialCommon, MaterialDesc, MaterialKind,
-    MirrorDesc, TextureDesc, WeightDesc,
+    BlendDesc, ConductorDesc, DielectricDesc, GlossyDesc, LambertDesc, MaterialCommon,
+    MaterialDesc, MaterialKind, MirrorDesc, Roughness, TextureDesc, WeightDesc,
 };
 pub use super::sensors::{
     IlluminanceSensorDesc, LuminanceSensorDesc, SensorCommon, SensorDesc, SensorKindDesc,

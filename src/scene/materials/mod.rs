@@ -4,6 +4,7 @@
 
 mod albedo;
 mod blend;
+mod conductor;
 mod dielectric;
 mod glossy;
 mod lambert;
@@ -15,6 +16,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 pub use blend::BlendDesc;
+pub use conductor::{ConductorDesc, Roughness};
 pub use dielectric::DielectricDesc;
 pub use glossy::GlossyDesc;
 pub use lambert::LambertDesc;
@@ -39,6 +41,7 @@ kinds! {
         "lambert" => Lambert(LambertDesc),
         "mirror" => Mirror(MirrorDesc),
         "glossy" => Glossy(GlossyDesc),
+        "conductor" => Conductor(ConductorDesc),
         "dielectric" => Dielectric(DielectricDesc),
         "blend" => Blend(BlendDesc),
     }
@@ -53,6 +56,7 @@ impl MaterialDesc {
             MaterialKind::Lambert(m) => m.check(c, key),
             MaterialKind::Mirror(m) => m.check(c, key),
             MaterialKind::Glossy(m) => m.check(c, key),
+            MaterialKind::Conductor(m) => m.check(c, key),
             MaterialKind::Dielectric(m) => m.check(c, key),
             MaterialKind::Blend(m) => m.check(c, key),
         }
@@ -65,6 +69,7 @@ impl MaterialDesc {
             MaterialKind::Lambert(_)
             | MaterialKind::Mirror(_)
             | MaterialKind::Glossy(_)
+            | MaterialKind::Conductor(_)
             | MaterialKind::Dielectric(_) => Vec::new(),
         }
     }
@@ -160,6 +165,7 @@ fn build_into<'a>(
         MaterialKind::Lambert(m) => m.build(b, &key)?,
         MaterialKind::Mirror(m) => m.build(b, &key)?,
         MaterialKind::Glossy(m) => m.build(b, &key)?,
+        MaterialKind::Conductor(m) => m.build(b, &key)?,
         MaterialKind::Dielectric(m) => m.build(b, &key)?,
         MaterialKind::Blend(m) => {
             let part = |built: &mut BTreeMap<&'a str, Material>, part: &'a str| {
