@@ -320,6 +320,15 @@ fn metallic_transmissive_and_textured_materials_map_to_brume_kinds() {
     .unwrap();
     let loaded = brume::scene::load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
     let m = &loaded.desc.materials;
+    let MaterialKind::Conductor(c) = &m["gltf0:0:Metal"].kind else {
+        panic!()
+    };
+    assert_eq!(c.roughness.alphas(), [0.25, 0.25]);
+    let f0 = [0.9f32, 0.6, 0.3].map(|v| v as f64);
+    assert_eq!(
+        format!("{:?}", c.f0),
+        format!("{:?}", Some(brume::scene::desc::SpectrumRef::Rgb(f0)))
+    );
     assert!(matches!(m["gltf0:1:Half"].kind, MaterialKind::Blend(_)));
     assert!(m.contains_key("gltf0:1:Half:diffuse") && m.contains_key("gltf0:1:Half:metal"));
     let MaterialKind::Dielectric(d) = &m["gltf0:2:Glass"].kind else {

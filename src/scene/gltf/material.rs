@@ -11,10 +11,10 @@ use super::file::{Fault, GltfFile, percent_decoded, read_bounded};
 use crate::material::{Encoding, Texture, Wrap};
 use crate::scene::check::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_SIDE};
 use crate::scene::desc::{
-    BlendDesc, DielectricDesc, GlossyDesc, LambertDesc, MaterialCommon, MaterialDesc, MaterialKind,
-    SpectrumRef, TextureDesc, WeightDesc,
+    BlendDesc, ConductorDesc, DielectricDesc, LambertDesc, MaterialCommon, MaterialDesc,
+    MaterialKind, SpectrumRef, TextureDesc, WeightDesc,
 };
-use crate::scene::materials::Decoded;
+use crate::scene::materials::{Decoded, Roughness};
 
 /// What a primitive takes from its glTF material: the scene material it is made of and, for
 /// an emissive material, the colour and luminance (cd/m²) it emits.
@@ -213,18 +213,14 @@ impl<'f> Materials<'f> {
     }
 }
 
-/// The material of a metallic surface: `f0` the base colour, `alpha` the GGX roughness
-/// (glTF's perceptual roughness squared).
-///
-/// Interim: the `conductor` material (issue 29's other half) is not in this tree yet; a
-/// glossy coat of the largest index brume accepts over the base colour stands in for it.
+/// The material of a metallic surface: a `conductor` whose Schlick `f0` is the base colour
+/// and whose GGX alpha is glTF's perceptual roughness squared (as glTF's own BRDF defines it).
 fn metal(f0: [f32; 3], alpha: f32) -> MaterialKind {
-    MaterialKind::Glossy(GlossyDesc {
-        albedo: Some(SpectrumRef::Rgb(f0.map(|c| c as f64))),
-        texture: None,
-        ior: SpectrumRef::Constant(5.0),
-        roughness: alpha.max(crate::material::MIN_ROUGHNESS),
-        allow_energy_gain: false,
+    MaterialKind::Conductor(ConductorDesc {
+        roughness: Roughness::Isotropic(alpha),
+        eta: None,
+        k: None,
+        f0: Some(SpectrumRef::Rgb(f0.map(|c| c as f64))),
     })
 }
 
