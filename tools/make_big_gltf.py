@@ -73,7 +73,7 @@ def main(out):
         f.write(struct.pack("<I", len(text)) + b"JSON" + text)
         f.write(struct.pack("<I", len(blob)) + b"BIN\0" + blob)
     with open(os.path.join(out, "big.toml"), "w") as f:
-        f.write('[camera]\nwidth = 160\nheight = 90\n\n[integrator]\nradius = 0.2\n'
+        f.write('[film]\nexposure = "auto"\n\n[camera]\nwidth = 160\nheight = 90\n\n[integrator]\nradius = 0.2\n'
                 'forward_rays = 20000\n\n[import]\nlights = true\n\n'
                 '[[shapes]]\ntype = "gltf"\nfile = "big.glb"\n')
     print(f"{out}/big.glb: {tris} triangles, {total} bytes")

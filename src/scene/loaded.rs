@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use super::desc::SceneDesc;
 use super::error::SceneWarning;
-use super::gltf::GltfReport;
+use super::import_report::GltfReport;
 use super::source::Source;
 
 /// A scene description read from a file, overrides applied and validated.

@@ -36,7 +36,7 @@ pub struct Summary {
     pub lights_report: Vec<String>,
     pub sensors_report: Vec<String>,
     /// What each glTF shape brought.
-    pub imports: Vec<super::gltf::GltfReport>,
+    pub imports: Vec<super::import_report::GltfReport>,
 }
 
 pub fn summarise(scene: &LoadedScene) -> Summary {

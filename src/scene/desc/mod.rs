@@ -9,6 +9,7 @@
 // siblings of this module (`scene/spectrum_desc.rs`, `scene/array.rs`): this module gathers
 // the kinds, so a kind (or the checks) reaching into it would close an import cycle.
 pub(crate) mod film;
+pub(crate) mod import;
 pub(crate) mod media;
 
 use std::collections::BTreeMap;
@@ -18,7 +19,6 @@ use toml::Spanned;
 use toml::de::DeValue;
 
 pub use super::camera::{CameraDesc, Projection};
-pub use super::gltf::ImportDesc;
 pub use super::lights::{
     DirectionalDesc, LaserDesc, LightCommon, LightDesc, LightKind, PointDesc, SpotDesc,
 };
@@ -36,6 +36,7 @@ pub use super::shapes::{
 pub use super::spectrum_desc::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
 pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
 pub use film::FilmDesc;
+pub use import::ImportDesc;
 pub use media::MediumDesc;
 
 use super::tagged::{self, Fault};

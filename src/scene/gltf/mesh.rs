@@ -157,20 +157,7 @@ pub fn triangles(
         .collect();
     let mut normals = normals;
     if world != Mat4::IDENTITY {
-        for q in &mut positions {
-            *q = world.transform_point3(*q);
-        }
-        let m = Mat3::from_mat4(world);
-        let normal = m.inverse().transpose();
-        for v in normals.iter_mut().flatten() {
-            *v = (normal * *v).normalize_or_zero();
-        }
-        // A mirroring transform turns counter-clockwise faces clockwise (glTF 2.0, 3.7.4).
-        if m.determinant() < 0.0 {
-            for t in &mut indices {
-                t.swap(1, 2);
-            }
-        }
+        place(world, &mut positions, normals.as_deref_mut(), &mut indices);
     }
     Ok(ShapeKind::Mesh {
         positions,
@@ -178,6 +165,29 @@ pub fn triangles(
         uvs,
         indices,
     })
+}
+
+/// Moves vertices and normals by `world` (normals by its inverse transpose).
+fn place(
+    world: Mat4,
+    positions: &mut [Vec3],
+    normals: Option<&mut [Vec3]>,
+    indices: &mut [[u32; 3]],
+) {
+    for q in positions.iter_mut() {
+        *q = world.transform_point3(*q);
+    }
+    let m = Mat3::from_mat4(world);
+    let normal = m.inverse().transpose();
+    for v in normals.into_iter().flatten() {
+        *v = (normal * *v).normalize_or_zero();
+    }
+    // A mirroring transform turns counter-clockwise faces clockwise (glTF 2.0, 3.7.4).
+    if m.determinant() < 0.0 {
+        for t in indices.iter_mut() {
+            t.swap(1, 2);
+        }
+    }
 }
 
 fn same_count(got: usize, n: usize, at: &str) -> Result<(), Fault> {

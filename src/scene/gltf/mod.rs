@@ -17,32 +17,16 @@ mod mesh;
 mod punctual;
 
 use std::collections::BTreeMap;
-use std::fmt;
 use std::sync::Arc;
-
-use serde::{Deserialize, Serialize};
 
 use super::desc::{CameraDesc, LightDesc, MaterialDesc, ShapeDesc, ShapeKindDesc, SpectrumRef};
 use super::error::{SceneError, SceneWarning};
+use super::import_report::GltfReport;
 use super::loaded::LoadedScene;
 use super::shapes::{GltfDesc, Part};
 use super::source::Source;
 use crate::geometry::ShapeKind;
 use file::{Fault, GltfFile};
-
-/// The `[import]` table: what glTF files bring besides their meshes and materials.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct ImportDesc {
-    /// Add the files' `KHR_lights_punctual` lights to the scene's lights.
-    pub lights: bool,
-}
-
-impl ImportDesc {
-    pub fn is_default(&self) -> bool {
-        *self == ImportDesc::default()
-    }
-}
 
 /// The extensions brume maps to its own kinds; any other is reported and ignored.
 const SUPPORTED: [&str; 4] = [
@@ -51,53 +35,6 @@ const SUPPORTED: [&str; 4] = [
     "KHR_materials_ior",
     "KHR_materials_emissive_strength",
 ];
-
-/// What one glTF shape brought, for `brume info`.
-#[derive(Clone, Debug)]
-pub struct GltfReport {
-    /// `shapes.<i>`.
-    pub key: String,
-    pub file: String,
-    pub meshes: usize,
-    pub primitives: usize,
-    pub triangles: usize,
-    /// (glTF material, the scene material its primitives are made of).
-    pub materials: Vec<(String, String)>,
-    pub emitting: usize,
-    /// Lights added to the scene, and lights in the file.
-    pub lights: (usize, usize),
-    /// The camera taken as the scene's, if any.
-    pub camera: Option<String>,
-    /// One line per feature brume ignored.
-    pub ignored: Vec<String>,
-}
-
-impl fmt::Display for GltfReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(
-            f,
-            "  {}: {}: {} meshes ({} primitives), {} triangles, {} materials ({} emitting), \
-             {} of {} lights imported, camera: {}",
-            self.key,
-            self.file,
-            self.meshes,
-            self.primitives,
-            self.triangles,
-            self.materials.len(),
-            self.emitting,
-            self.lights.0,
-            self.lights.1,
-            self.camera.as_deref().unwrap_or("none taken"),
-        )?;
-        for (g, m) in &self.materials {
-            writeln!(f, "    material {g} -> {m}")?;
-        }
-        for line in &self.ignored {
-            writeln!(f, "    ignored: {line}")?;
-        }
-        Ok(())
-    }
-}
 
 /// What a file has that brume does not render: per feature, the glTF paths that have it.
 #[derive(Default)]
@@ -185,6 +122,31 @@ struct Imported {
     report: GltfReport,
 }
 
+/// Where a glTF shape is and how its errors are placed.
+struct Ctx<'a> {
+    source: Source<'a>,
+    shape: &'a ShapeDesc,
+    g: &'a GltfDesc,
+    /// Its index in `shapes`, and `shapes.<i>`.
+    i: usize,
+    key: String,
+    /// The glTF file's path as shown in messages.
+    shown: String,
+}
+
+impl Ctx<'_> {
+    /// A fault of the file, at the shape's `file` key.
+    fn refuse(&self, f: Fault) -> SceneError {
+        let at = if f.path.is_empty() {
+            String::new()
+        } else {
+            format!(": {}", f.path)
+        };
+        let message = format!("{}{at}: {}", self.shown, f.message);
+        self.source.invalid(&format!("{}.file", self.key), message)
+    }
+}
+
 /// Imports shape `i` (a glTF shape) of `d`.
 fn import(
     source: Source,
@@ -196,137 +158,50 @@ fn import(
     let ShapeKindDesc::Gltf(g) = &shape.kind else {
         unreachable!("expand passes glTF shapes only")
     };
-    let key = format!("shapes.{i}");
     let path = source.resolve(&g.file);
-    let shown = path.display().to_string();
-    let refuse = |f: Fault| {
-        let at = if f.path.is_empty() {
-            String::new()
-        } else {
-            format!(": {}", f.path)
-        };
-        source.invalid(
-            &format!("{key}.file"),
-            format!("{shown}{at}: {}", f.message),
-        )
+    let cx = Ctx {
+        source,
+        shape,
+        g,
+        i,
+        key: format!("shapes.{i}"),
+        shown: path.display().to_string(),
     };
-    let f = file::open(&path).map_err(refuse)?;
+    let f = file::open(&path).map_err(|e| cx.refuse(e))?;
     let mut notes = Notes::default();
-    check_extensions(&f, &mut notes).map_err(refuse)?;
-    let nodes = mesh::nodes(&f, g.scene.as_ref(), &g.nodes).map_err(|f| match f.path.as_str() {
-        "nodes" => source.invalid(&format!("{key}.nodes"), format!("{shown}: {}", f.message)),
-        "scenes" => source.invalid(&format!("{key}.scene"), format!("{shown}: {}", f.message)),
-        _ => refuse(f),
+    check_extensions(&f, &mut notes).map_err(|e| cx.refuse(e))?;
+    let nodes = mesh::nodes(&f, g.scene.as_ref(), &g.nodes).map_err(|e| match e.path.as_str() {
+        "nodes" | "scenes" => {
+            let k = if e.path == "nodes" { "nodes" } else { "scene" };
+            let message = format!("{}: {}", cx.shown, e.message);
+            source.invalid(&format!("{}.{k}", cx.key), message)
+        }
+        _ => cx.refuse(e),
     })?;
-    let mut out = Imported {
-        parts: Vec::new(),
-        materials: BTreeMap::new(),
-        lights: Vec::new(),
-        camera: None,
-        warnings: Vec::new(),
-        report: GltfReport {
-            key: key.clone(),
-            file: g.file.clone(),
-            meshes: 0,
-            primitives: 0,
-            triangles: 0,
-            materials: Vec::new(),
-            emitting: 0,
-            lights: (0, 0),
-            camera: None,
-            ignored: Vec::new(),
-        },
-    };
-    let mut mats = material::Materials::new(&f, i, shown.clone());
+    let mut out = Imported::new(&cx);
+    let mut mats = material::Materials::new(&f, i, cx.shown.clone());
     let mut used = vec![false; g.materials.len()];
     let mut meshes = std::collections::BTreeSet::new();
     for (node, world) in &nodes {
-        let node_at = format!("nodes[{}]", node.index());
         if node.skin().is_some() {
-            notes.add("skins (meshes drawn in their rest pose)", &node_at);
+            let at = format!("nodes[{}]", node.index());
+            notes.add("skins (meshes drawn in their rest pose)", &at);
         }
         if let Some(m) = node.mesh() {
             meshes.insert(m.index());
             for p in m.primitives() {
-                let at = format!("meshes[{}].primitives[{}]", m.index(), p.index());
-                note_primitive(&p, &at, &mut notes);
-                let tris = mesh::triangles(&f, &p, *world, &at).map_err(refuse)?;
-                let m = p.material();
-                let over = m
-                    .name()
-                    .and_then(|n| g.materials.keys().position(|k| k == n));
-                if let Some(k) = over {
-                    used[k] = true;
-                }
-                let over = over
-                    .and_then(|k| g.materials.values().nth(k))
-                    .or(shape.common.material.as_ref());
-                let mat_at = m
-                    .index()
-                    .map_or("the default material".into(), |k| format!("materials[{k}]"));
-                let (material, emit) = match over {
-                    Some(name) => (
-                        name.clone(),
-                        material::emission(&m, &mat_at).map_err(refuse)?,
-                    ),
-                    None => {
-                        let s = mats.surface(m.clone(), &mut notes).map_err(refuse)?;
-                        (s.material, s.emit)
-                    }
+                let part = Primitive {
+                    f: &f,
+                    p,
+                    mesh: m.index(),
+                    world: *world,
                 };
-                let gltf_name = m.name().map_or(mat_at.clone(), str::to_string);
-                if !out.report.materials.iter().any(|(n, _)| *n == gltf_name) {
-                    out.report.materials.push((gltf_name, material.clone()));
-                    out.report.emitting += emit.is_some() as usize;
-                }
-                out.report.primitives += 1;
-                if let ShapeKind::Mesh { indices, .. } = &tris {
-                    out.report.triangles += indices.len();
-                }
-                out.parts.push(part(shape, g, i, tris, at, material, emit));
+                primitive(&cx, part, &mut mats, &mut used, &mut notes, &mut out)?;
             }
         }
-        if let Some(l) = node.light() {
-            out.report.lights.1 += 1;
-            if d.import.lights {
-                if let Some(light) = punctual::light(&l, *world, &mut notes).map_err(refuse)? {
-                    out.lights.push(light);
-                    out.report.lights.0 += 1;
-                }
-            } else {
-                notes.add(
-                    "KHR_lights_punctual lights (import them with [import] lights = true)",
-                    &node_at,
-                );
-            }
-        }
-        if let Some(c) = node.camera()
-            && want_camera
-            && out.camera.is_none()
-        {
-            out.camera = Some(punctual::camera(&c, *world, &d.camera));
-            out.report.camera = Some(format!(
-                "cameras[{}]{} at {node_at}",
-                c.index(),
-                c.name().map(|n| format!(" ({n})")).unwrap_or_default()
-            ));
-        }
+        node_extras(&cx, d, node, *world, want_camera, &mut notes, &mut out)?;
     }
-    if let Some(k) = used.iter().position(|u| !u) {
-        let name = g.materials.keys().nth(k).cloned().unwrap_or_default();
-        let names: Vec<&str> = f.doc.materials().filter_map(|m| m.name()).collect();
-        return Err(source.invalid(
-            &format!("{key}.materials.{name}"),
-            format!(
-                "{shown}: no primitive read uses a material named `{name}` (its materials: {})",
-                if names.is_empty() {
-                    "none named".to_string()
-                } else {
-                    names.join(", ")
-                }
-            ),
-        ));
-    }
+    unused_overrides(&cx, &f, &used)?;
     out.report.meshes = meshes.len();
     out.materials = mats.made;
     out.report.ignored = notes.lines();
@@ -334,22 +209,152 @@ fn import(
         .report
         .ignored
         .iter()
-        .map(|l| source.warning(&format!("{key}.file"), format!("{shown}: ignored: {l}")))
+        .map(|l| {
+            let message = format!("{}: ignored: {l}", cx.shown);
+            source.warning(&format!("{}.file", cx.key), message)
+        })
         .collect();
     Ok(out)
 }
 
+impl Imported {
+    fn new(cx: &Ctx) -> Imported {
+        Imported {
+            parts: Vec::new(),
+            materials: BTreeMap::new(),
+            lights: Vec::new(),
+            camera: None,
+            warnings: Vec::new(),
+            report: GltfReport {
+                key: cx.key.clone(),
+                file: cx.g.file.clone(),
+                ..GltfReport::default()
+            },
+        }
+    }
+}
+
+/// A primitive to import: its file, itself and its node's world matrix.
+struct Primitive<'f> {
+    f: &'f GltfFile,
+    p: gltf::Primitive<'f>,
+    mesh: usize,
+    world: glam::Mat4,
+}
+
+/// One primitive as a part: its triangles, its material (an override by the glTF material's
+/// name, the shape's `material`, or the imported material) and its emission.
+fn primitive(
+    cx: &Ctx,
+    prim: Primitive,
+    mats: &mut material::Materials,
+    used: &mut [bool],
+    notes: &mut Notes,
+    out: &mut Imported,
+) -> Result<(), SceneError> {
+    let Primitive { f, p, mesh, world } = prim;
+    let at = format!("meshes[{mesh}].primitives[{}]", p.index());
+    note_primitive(&p, &at, notes);
+    let tris = mesh::triangles(f, &p, world, &at).map_err(|e| cx.refuse(e))?;
+    let m = p.material();
+    let over = m
+        .name()
+        .and_then(|n| cx.g.materials.keys().position(|k| k == n));
+    if let Some(k) = over {
+        used[k] = true;
+    }
+    let over =
+        over.and_then(|k| cx.g.materials.values().nth(k))
+            .or(cx.shape.common.material.as_ref());
+    let mat_at = m
+        .index()
+        .map_or("the default material".into(), |k| format!("materials[{k}]"));
+    let (material, emit) = match over {
+        Some(name) => {
+            let emit = material::emission(&m, &mat_at).map_err(|e| cx.refuse(e))?;
+            (name.clone(), emit)
+        }
+        None => {
+            let s = mats.surface(m.clone(), notes).map_err(|e| cx.refuse(e))?;
+            (s.material, s.emit)
+        }
+    };
+    let r = &mut out.report;
+    let gltf_name = m.name().map_or(mat_at.clone(), str::to_string);
+    if !r.materials.iter().any(|(n, _)| *n == gltf_name) {
+        r.materials.push((gltf_name, material.clone()));
+        r.emitting += emit.is_some() as usize;
+    }
+    r.primitives += 1;
+    if let ShapeKind::Mesh { indices, .. } = &tris {
+        r.triangles += indices.len();
+    }
+    out.parts.push(part(cx, tris, at, material, emit));
+    Ok(())
+}
+
+/// A node's light (with `[import] lights`) and camera (the first, when wanted).
+fn node_extras(
+    cx: &Ctx,
+    d: &super::desc::SceneDesc,
+    node: &gltf::Node,
+    world: glam::Mat4,
+    want_camera: bool,
+    notes: &mut Notes,
+    out: &mut Imported,
+) -> Result<(), SceneError> {
+    let node_at = format!("nodes[{}]", node.index());
+    if let Some(l) = node.light() {
+        out.report.lights.1 += 1;
+        if !d.import.lights {
+            let what = "KHR_lights_punctual lights (import them with [import] lights = true)";
+            notes.add(what, &node_at);
+        } else if let Some(light) = punctual::light(&l, world, notes).map_err(|e| cx.refuse(e))? {
+            out.lights.push(light);
+            out.report.lights.0 += 1;
+        }
+    }
+    if let Some(c) = node.camera()
+        && want_camera
+        && out.camera.is_none()
+    {
+        out.camera = Some(punctual::camera(&c, world, &d.camera));
+        let name = c.name().map(|n| format!(" ({n})")).unwrap_or_default();
+        out.report.camera = Some(format!("cameras[{}]{name} at {node_at}", c.index()));
+    }
+    Ok(())
+}
+
+/// A `materials` override naming a material no primitive read uses is a mistake.
+fn unused_overrides(cx: &Ctx, f: &GltfFile, used: &[bool]) -> Result<(), SceneError> {
+    let Some(k) = used.iter().position(|u| !u) else {
+        return Ok(());
+    };
+    let name = cx.g.materials.keys().nth(k).cloned().unwrap_or_default();
+    let names: Vec<&str> = f.doc.materials().filter_map(|m| m.name()).collect();
+    let known = if names.is_empty() {
+        "none named".to_string()
+    } else {
+        names.join(", ")
+    };
+    Err(cx.source.invalid(
+        &format!("{}.materials.{name}", cx.key),
+        format!(
+            "{}: no primitive read uses a material named `{name}` (its materials: {known})",
+            cx.shown
+        ),
+    ))
+}
+
 /// The scene shape of one primitive: the glTF shape's keys, its material and emission.
 fn part(
-    shape: &ShapeDesc,
-    g: &GltfDesc,
-    i: usize,
+    cx: &Ctx,
     mesh: ShapeKind,
     path: String,
     material: String,
     emit: Option<([f64; 3], f32)>,
 ) -> ShapeDesc {
-    let mut common = shape.common.clone();
+    let mut common = cx.shape.common.clone();
     common.material = Some(material);
     if let Some((colour, nits)) = emit {
         common.emit = Some(SpectrumRef::Rgb(colour));
@@ -361,9 +366,9 @@ fn part(
             part: Some(Part {
                 mesh: Arc::new(mesh),
                 path,
-                shape: i,
+                shape: cx.i,
             }),
-            ..g.clone()
+            ..cx.g.clone()
         }),
     }
 }
