@@ -204,7 +204,7 @@ fn same_count(got: usize, n: usize, at: &str) -> Result<(), Fault> {
 fn assemble(mode: Mode, order: &[u32], at: &str) -> Result<Vec<[u32; 3]>, Fault> {
     let tris = match mode {
         Mode::Triangles => {
-            if order.len() % 3 != 0 {
+            if !order.len().is_multiple_of(3) {
                 return Err(Fault::at(
                     at,
                     format!("{} indices do not make whole triangles", order.len()),
