@@ -5,8 +5,8 @@ of docs/performance.md. Standard library only; the .glb is 18 MB, so they are wr
 folder of your choice, never committed:
 
     python3 tools/make_big_gltf.py /tmp/big
-    time target/release/brume info /tmp/big/big.toml
-    time target/release/brume render /tmp/big/big.toml --passes 1 -o /tmp/big/big.png
+    /usr/bin/time -f "%e s wall, %U s user, %M KB" target/release/brume info /tmp/big/big.toml
+    target/release/brume render /tmp/big/big.toml --passes 2 -o /tmp/big/big.png
 """
 
 import json
