@@ -202,3 +202,30 @@ fn a_file_that_is_not_gltf_and_an_absent_node_name_are_refused() {
         "{e}"
     );
 }
+
+#[test]
+fn a_scene_is_picked_by_index_or_name_and_an_absent_one_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut g = good();
+    g.json["scenes"][0]["name"] = json!("Street");
+    g.json["scenes"]
+        .as_array_mut()
+        .expect("scenes")
+        .push(json!({ "name": "Empty", "nodes": [] }));
+    g.write_glb(&dir.path().join("g.glb"));
+    let path = dir.path().join("scene.toml");
+    let shapes = |scene: &str| {
+        std::fs::write(&path, format!("{SCENE}file = \"g.glb\"\nscene = {scene}\n"))
+            .expect("write");
+        brume::scene::load(&path, &[]).map(|l| l.desc.shapes.len())
+    };
+    assert_eq!(shapes("\"Street\"").expect("by name"), 2);
+    assert_eq!(shapes("1").expect("by index"), 1);
+    let e = shapes("2").expect_err("no third scene").to_string();
+    assert!(
+        e.contains("scene.toml:12") && e.contains("shapes.0.scene") && e.contains("2 scenes"),
+        "{e}"
+    );
+    let e = shapes("\"Park\"").expect_err("no such name").to_string();
+    assert!(e.contains("shapes.0.scene") && e.contains("`Park`"), "{e}");
+}

@@ -15,7 +15,8 @@ use writer::Gltf;
 
 const YFOV: f32 = 0.7;
 
-/// A floor (2 x 2 m, z = 0, facing +z), a small emitting panel above it facing down, a point
+/// A floor (2 x 2 m, z = 0, facing +z), a small emitting panel above it facing down, a
+/// standing plate of rough metal (glTF metallic 1, roughness 0.5: a conductor), a point
 /// light moved by its node, a spot and a directional light shining down -z (their nodes'
 /// axis), and a camera 3 m above, looking down.
 fn street() -> Gltf {
@@ -47,6 +48,19 @@ fn street() -> Gltf {
     ];
     let m = g.mesh(&panel, None, &[0, 1, 2, 0, 2, 3], Some(lamp));
     g.node(json!({ "name": "Panel", "mesh": m }));
+    let steel = g.material(json!({
+        "name": "Steel",
+        "pbrMetallicRoughness": { "baseColorFactor": [0.6, 0.62, 0.65, 1.0],
+            "metallicFactor": 1.0, "roughnessFactor": 0.5 }
+    }));
+    let plate = [
+        [0.4, -0.5, 0.0],
+        [0.9, -0.5, 0.0],
+        [0.9, -0.5, 0.6],
+        [0.4, -0.5, 0.6],
+    ];
+    let m = g.mesh(&plate, None, &[0, 1, 2, 0, 2, 3], Some(steel));
+    g.node(json!({ "name": "Plate", "mesh": m }));
     let point = g.light(json!({ "type": "point", "intensity": 40.0 }));
     let spot = g.light(json!({
         "type": "spot", "intensity": 120.0, "color": [1.0, 0.8, 0.6],
@@ -126,6 +140,19 @@ fn toml_scene(dir: &Path) -> std::path::PathBuf {
         0.5f32.to_degrees(),
         (0.5f32 - 0.25).to_degrees()
     );
+    std::fs::write(
+        dir.join("plate.obj"),
+        "v 0.4 -0.5 0\nv 0.9 -0.5 0\nv 0.9 -0.5 0.6\nv 0.4 -0.5 0.6\nf 1 2 3\nf 1 3 4\n",
+    )
+    .expect("obj");
+    let _ = write!(
+        t,
+        "\n[materials.steel]\ntype = \"conductor\"\nroughness = 0.25\nf0 = [{}, {}, {}]\n\
+         \n[[shapes]]\ntype = \"mesh\"\nfile = \"plate.obj\"\nmaterial = \"steel\"\n",
+        f(0.6),
+        f(0.62),
+        f(0.65)
+    );
     let path = dir.join("toml.toml");
     std::fs::write(&path, t).expect("write scene");
     path
@@ -163,7 +190,7 @@ fn a_glb_brings_its_meshes_materials_lights_and_camera() {
     let loaded = brume::scene::load(&gltf_scene(dir.path()), &[]).unwrap_or_else(|e| panic!("{e}"));
     let d = &loaded.desc;
     // The glTF shape itself, then one part per primitive.
-    assert_eq!(d.shapes.len(), 3);
+    assert_eq!(d.shapes.len(), 4);
     assert_eq!(
         d.shapes[1].common.material.as_deref(),
         Some("gltf0:0:Floor")
@@ -194,8 +221,8 @@ fn a_glb_brings_its_meshes_materials_lights_and_camera() {
     assert_eq!(d.camera.fov, Some(YFOV.to_degrees()));
     assert_eq!((d.camera.width, d.camera.height), (24, 24));
     let info = brume::scene::summary::summarise(&loaded).to_string();
-    assert!(info.contains("street.glb: 2 meshes (2 primitives), 4 triangles, 2 materials (1 emitting), 3 of 3 lights imported"), "{info}");
-    assert!(info.contains("camera: cameras[0] at nodes[5]"), "{info}");
+    assert!(info.contains("street.glb: 3 meshes (3 primitives), 6 triangles, 3 materials (1 emitting), 3 of 3 lights imported"), "{info}");
+    assert!(info.contains("camera: cameras[0] at nodes[6]"), "{info}");
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
 }
 
