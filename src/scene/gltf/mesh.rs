@@ -70,7 +70,7 @@ fn roots<'a>(f: &'a GltfFile, scene: Option<&SceneRef>) -> Result<Vec<gltf::Node
     let n = f.doc.scenes().len();
     let picked = match scene {
         Some(SceneRef::Index(i)) => Some(f.doc.scenes().nth(*i).ok_or_else(|| {
-            Fault::at(format!("scenes[{i}]"), format!("the file has {n} scenes"))
+            Fault::at("scenes", format!("no scenes[{i}]: the file has {n} scenes"))
         })?),
         Some(SceneRef::Name(name)) => Some(
             f.doc
