@@ -418,3 +418,31 @@ fn unsupported_features_are_warned_once_each_and_listed_by_info() {
     );
     assert!(info.contains("0 of 3 lights imported"), "{info}");
 }
+
+/// `luminance` (the key glTF emitters come in by) sets what the camera sees of the emitter: a
+/// panel of 250 cd/m² filling the view reads 250 cd/m² in every pixel (direct emission is
+/// exact: no sampling noise), whatever its colour.
+#[test]
+fn an_emitter_given_by_its_luminance_is_seen_at_that_luminance() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("s.toml");
+    std::fs::write(
+        &path,
+        "[film]\nbins = 16\n[camera]\nwidth = 8\nheight = 8\nposition = [0, 0, 1]\n\
+         look_at = [0, 0, 0]\nfov = 20\n[[shapes]]\ntype = \"quad\"\nsize = [4, 4]\n\
+         emit = [1.0, 0.5, 0.2]\nluminance = 250\n",
+    )
+    .expect("write");
+    let loaded = brume::scene::load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let built = brume::scene::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    let integrator =
+        brume::scene::build_integrator(&loaded, &built).unwrap_or_else(|e| panic!("{e}"));
+    let mut r = Renderer::new(&built, integrator, 1);
+    r.run(Budget::Passes(1), |_, _| {});
+    let img = r.image();
+    let w = brume::colour::photometry::luminous_weights(&img.grid).expect("weights");
+    for px in img.data.chunks_exact(img.grid.n) {
+        let l = brume::colour::photometry::photometric(&w, px);
+        assert!((l - 250.0).abs() < 250.0 * 1e-4, "{l} cd/m²");
+    }
+}
