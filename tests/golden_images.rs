@@ -114,6 +114,7 @@ fn render_hash(scene: &std::path::Path, sets: &[String]) -> u64 {
 /// (issue 19: every scene with a gathering surface edge in view changed); re-recorded when long
 /// cylinders at an angle to the axes were cut into pieces with tight boxes (issue 18: the
 /// cylinder rows of the perspective scenes changed by rounding; axis-aligned ones are whole).
+/// street-gltf's rows recorded when it was added (issue 29).
 const GOLDEN: &[(&str, &str, &str, u64)] = &[
     (
         "chromatic-fog",
@@ -690,6 +691,61 @@ const GOLDEN: &[(&str, &str, &str, u64)] = &[
         "see-through",
         0x647135ad5d6bde77,
     ),
+    (
+        "street-gltf",
+        "spheres-q1",
+        "first-extinction",
+        0xf7b549fd1ae09bc7,
+    ),
+    (
+        "street-gltf",
+        "spheres-q1",
+        "see-through",
+        0xea5dfe23af89113d,
+    ),
+    (
+        "street-gltf",
+        "spheres-q0.1",
+        "first-extinction",
+        0x290e527e30a3b478,
+    ),
+    (
+        "street-gltf",
+        "spheres-q0.1",
+        "see-through",
+        0x8677fbdb9813bc7b,
+    ),
+    (
+        "street-gltf",
+        "cylinder",
+        "first-extinction",
+        0xb3962dea9999e93b,
+    ),
+    ("street-gltf", "cylinder", "see-through", 0x1e6cf39b07dfb500),
+    (
+        "street-gltf",
+        "cylinder-truncated",
+        "first-extinction",
+        0x55404a89d16a703f,
+    ),
+    (
+        "street-gltf",
+        "cylinder-truncated",
+        "see-through",
+        0xa89a2e3ebfb8268a,
+    ),
+    (
+        "street-gltf",
+        "cylinder-long",
+        "first-extinction",
+        0x8de0614ea6222e99,
+    ),
+    (
+        "street-gltf",
+        "cylinder-long",
+        "see-through",
+        0xb597639ac8b6c8ae,
+    ),
 ];
 
 #[test]
@@ -785,7 +841,7 @@ transform = { translate = [0, 0.3, 0] }
 "#;
 
 /// (scene, hash) with `NEE` and `PINNED`: every scene in scenes/ and `GLOSSY_AREA` (as
-/// "glossy-area"). Recorded when added (issue 31).
+/// "glossy-area"). Recorded when added (issue 31; street-gltf when it was added, issue 29).
 const GOLDEN_NEE: &[(&str, u64)] = &[
     ("chromatic-fog", 0xa82166ab7ae95ffc),
     ("colour-checker", 0x83ea012ec782c675),
@@ -797,6 +853,7 @@ const GOLDEN_NEE: &[(&str, u64)] = &[
     ("laser-mirror", 0xd599a00ae4d0deed),
     ("smoke-plume", 0x83ef0d451705fdba),
     ("street-fog", 0xdf5b9354a6b2ba4e),
+    ("street-gltf", 0xe71f3e7efa31b6d0),
     ("translucent-plate", 0x86fa736dd6735118),
     ("valley-fog", 0x7f94a9b9e3e56414),
     ("glossy-area", 0xd023ffc72a1cc86d),

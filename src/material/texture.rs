@@ -161,6 +161,33 @@ impl Texture {
         Ok(Self::from_rgb(w, h, &rgb, n_bins, to_spectrum))
     }
 
+    /// Decodes a PNG or JPEG image held in memory (a glTF's embedded texture) to linear RGB
+    /// texels, top row first: (width, height, texels). The size is read from the header and
+    /// refused above `max_pixels` before the pixels are allocated.
+    pub fn decode_memory(
+        bytes: &[u8],
+        encoding: Encoding,
+        max_pixels: u64,
+    ) -> Result<(usize, usize, Vec<[f32; 3]>), String> {
+        let reader = || {
+            image::ImageReader::new(std::io::Cursor::new(bytes))
+                .with_guessed_format()
+                .map_err(|e| e.to_string())
+        };
+        let (w, h) = reader()?.into_dimensions().map_err(|e| e.to_string())?;
+        if w == 0 || h == 0 || w as u64 * h as u64 > max_pixels {
+            return Err(format!(
+                "{w} x {h} pixels: outside the 1..={max_pixels} pixels accepted"
+            ));
+        }
+        let img = reader()?.decode().map_err(|e| e.to_string())?.to_rgb32f();
+        let rgb = img
+            .pixels()
+            .map(|p| p.0.map(|c| encoding.decode(c)))
+            .collect();
+        Ok((w as usize, h as usize, rgb))
+    }
+
     pub fn resolution(&self) -> (usize, usize) {
         (self.width, self.height)
     }

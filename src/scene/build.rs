@@ -78,7 +78,13 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
     }
     let lights = build_lights(&b, d, &geometry, area_lights)?;
     let (world_min, world_max) = world_box(&geometry, &camera, b.radius);
-    let warnings = warnings(scene, &geometry, &lights, (radius_key, b.radius));
+    let mut warnings = scene.warnings.clone();
+    warnings.extend(warnings_of(
+        scene,
+        &geometry,
+        &lights,
+        (radius_key, b.radius),
+    ));
     let outside = b.outside_medium();
     let mut built = Scene {
         grid,
@@ -222,7 +228,7 @@ fn world_box(geometry: &Geometry, camera: &Camera, radius: f32) -> (Vec3, Vec3) 
 }
 
 /// Warnings that need the built scene: no light that emits, a radius as large as the scene.
-fn warnings(
+fn warnings_of(
     scene: &LoadedScene,
     geometry: &Geometry,
     lights: &LightSet,

@@ -140,10 +140,14 @@ pub fn load_str(text: &str, file: &Path, sets: &[String]) -> Result<LoadedScene,
             .iter()
             .map(|a| (a.text.clone(), path::display(&a.path)))
             .collect(),
+        imports: Vec::new(),
+        warnings: Vec::new(),
     };
     if let Some(problem) = validate::validate(&loaded).into_iter().next() {
         return Err(loaded.source().invalid(&problem.key, problem.message));
     }
+    let mut loaded = loaded;
+    super::gltf::expand(&mut loaded)?;
     Ok(loaded)
 }
 

@@ -3,6 +3,8 @@
 use std::path::PathBuf;
 
 use super::desc::SceneDesc;
+use super::error::SceneWarning;
+use super::import_report::GltfReport;
 use super::source::Source;
 
 /// A scene description read from a file, overrides applied and validated.
@@ -17,6 +19,10 @@ pub struct LoadedScene {
     pub text: String,
     /// The `--set` overrides applied, in order: (the assignment as given, its dotted key).
     pub sets: Vec<(String, String)>,
+    /// What each glTF shape brought (`desc` holds it already, expanded).
+    pub imports: Vec<GltfReport>,
+    /// What loading allowed but reports (features of the glTF files that brume ignores).
+    pub warnings: Vec<SceneWarning>,
 }
 
 impl LoadedScene {

@@ -35,6 +35,8 @@ pub struct Summary {
     /// One line per light and per sensor: its key, kind and keys as the scene gives them.
     pub lights_report: Vec<String>,
     pub sensors_report: Vec<String>,
+    /// What each glTF shape brought.
+    pub imports: Vec<super::import_report::GltfReport>,
 }
 
 pub fn summarise(scene: &LoadedScene) -> Summary {
@@ -81,6 +83,7 @@ pub fn summarise(scene: &LoadedScene) -> Summary {
             .enumerate()
             .map(|(i, s)| format!("  sensors.{i} ({}): {}", s.name(i), keys_line(s)))
             .collect(),
+        imports: scene.imports.clone(),
     }
 }
 
@@ -237,6 +240,12 @@ impl fmt::Display for Summary {
             m.tiles()
         )?;
         writeln!(f, "film:         {}", bytes(m.film_bytes))?;
+        if !self.imports.is_empty() {
+            writeln!(f, "gltf:         {} files", self.imports.len())?;
+            for r in &self.imports {
+                write!(f, "{r}")?;
+            }
+        }
         writeln!(f, "lights:       {}", self.lights_report.len())?;
         for line in &self.lights_report {
             writeln!(f, "{line}")?;

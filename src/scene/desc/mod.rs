@@ -9,6 +9,7 @@
 // siblings of this module (`scene/spectrum_desc.rs`, `scene/array.rs`): this module gathers
 // the kinds, so a kind (or the checks) reaching into it would close an import cycle.
 pub(crate) mod film;
+pub(crate) mod import;
 pub(crate) mod media;
 
 use std::collections::BTreeMap;
@@ -29,12 +30,13 @@ pub use super::sensors::{
     IlluminanceSensorDesc, LuminanceSensorDesc, SensorCommon, SensorDesc, SensorKindDesc,
 };
 pub use super::shapes::{
-    BoxDesc, DiscDesc, MeshDesc, QuadDesc, ShapeCommon, ShapeDesc, ShapeKindDesc, SphereDesc,
-    TransformDesc,
+    BoxDesc, DiscDesc, GltfDesc, MeshDesc, QuadDesc, SceneRef, ShapeCommon, ShapeDesc,
+    ShapeKindDesc, SphereDesc, TransformDesc,
 };
 pub use super::spectrum_desc::{PowerLaw, RgbKind, SpectrumDesc, SpectrumRef};
 pub use crate::integrator::settings::{GatherMode, IntegratorDesc, VolumeKind};
 pub use film::FilmDesc;
+pub use import::ImportDesc;
 pub use media::MediumDesc;
 
 use super::tagged::{self, Fault};
@@ -54,6 +56,9 @@ pub struct SceneDesc {
     pub sensors: Vec<SensorDesc>,
     /// Name of the medium filling all space outside every shape (none = vacuum).
     pub medium: Option<String>,
+    /// What glTF shapes bring besides meshes and materials.
+    #[serde(skip_serializing_if = "ImportDesc::is_default")]
+    pub import: ImportDesc,
 }
 
 /// Why the table of `section` (`lights`, `shapes`, `materials`, `sensors`) cannot be read, with the key

@@ -21,7 +21,7 @@ pub use dielectric::DielectricDesc;
 pub use glossy::GlossyDesc;
 pub use lambert::LambertDesc;
 pub use mirror::MirrorDesc;
-pub use texture::{TextureDesc, WeightDesc};
+pub use texture::{Decoded, TextureDesc, WeightDesc};
 
 use super::builder::Builder;
 use super::check::Checker;

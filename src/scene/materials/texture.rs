@@ -4,6 +4,7 @@
 use std::cell::Cell;
 use std::fmt;
 use std::path::Path;
+use std::sync::Arc;
 
 use serde::de::value::MapAccessDeserializer;
 use serde::de::{MapAccess, Visitor};
@@ -26,6 +27,26 @@ pub struct TextureDesc {
     /// Lookups outside [0, 1]: `repeat` (default) or `clamp`.
     #[serde(default)]
     pub wrap: Wrap,
+    /// Texels already decoded (a glTF's textures, which may live inside the glTF file; `file`
+    /// then names the image for messages). Never read from a scene file.
+    #[serde(skip)]
+    pub decoded: Option<Decoded>,
+}
+
+/// Decoded linear RGB texels: width, height, texels (top row first).
+#[derive(Clone)]
+pub struct Decoded(pub Arc<(usize, usize, Vec<[f32; 3]>)>);
+
+impl fmt::Debug for Decoded {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Decoded({} x {})", self.0.0, self.0.1)
+    }
+}
+
+impl PartialEq for Decoded {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// What loading a texture saw of its linear RGB values.
@@ -43,10 +64,14 @@ impl TextureDesc {
             file: file.to_string(),
             colour_space: None,
             wrap: Wrap::default(),
+            decoded: None,
         }
     }
 
     pub fn check(&self, c: &mut Checker, key: &str) {
+        if self.decoded.is_some() {
+            return;
+        }
         c.texture(key, &self.file);
     }
 
@@ -75,8 +100,11 @@ impl TextureDesc {
             }
             to_spectrum(rgb)
         };
-        let texture = Texture::load_encoded(&path, self.encoding(&path), n_bins, &seen)
-            .map_err(|e| b.source.invalid(key, e.to_string()))?;
+        let texture = match &self.decoded {
+            Some(Decoded(d)) => Texture::from_rgb(d.0, d.1, &d.2, n_bins, &seen),
+            None => Texture::load_encoded(&path, self.encoding(&path), n_bins, &seen)
+                .map_err(|e| b.source.invalid(key, e.to_string()))?,
+        };
         if !finite.get() {
             return Err(b.source.invalid(
                 key,

@@ -4,6 +4,7 @@
 
 mod cuboid;
 mod disc;
+mod gltf;
 mod mesh;
 mod quad;
 mod sphere;
@@ -15,6 +16,7 @@ use crate::scene::array::exact;
 
 pub use cuboid::BoxDesc;
 pub use disc::DiscDesc;
+pub use gltf::{GltfDesc, Part, SceneRef};
 pub use mesh::MeshDesc;
 pub use quad::QuadDesc;
 pub use sphere::SphereDesc;
@@ -78,6 +80,9 @@ pub struct ShapeCommon {
     /// Total luminous flux of the emitter, lm: `emit` then gives only the spectral shape.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub luminous_flux: Option<f32>,
+    /// Luminance of the emitter, cd/m² (nits): `emit` then gives only the spectral shape.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub luminance: Option<f32>,
     /// Multiplier of the emitter's share of forward rays (see `[[lights]]`).
     #[serde(
         default = "crate::scene::lights::one",
@@ -107,6 +112,7 @@ kinds! {
         "sphere" => Sphere(SphereDesc),
         "disc" => Disc(DiscDesc),
         "mesh" => Mesh(MeshDesc),
+        "gltf" => Gltf(GltfDesc),
     }
 }
 
@@ -121,6 +127,16 @@ impl ShapeDesc {
             ShapeKindDesc::Sphere(s) => s.check(c, key),
             ShapeKindDesc::Disc(s) => s.check(c, key),
             ShapeKindDesc::Mesh(s) => s.check(c, key),
+            ShapeKindDesc::Gltf(g) => {
+                g.check(c, key);
+                // A glTF's emission comes from its materials.
+                if g.part.is_none() && self.common.emit.is_some() {
+                    c.fail(
+                        format!("{key}.emit"),
+                        "a glTF shape emits through its materials' `emissive`: drop `emit`",
+                    );
+                }
+            }
         }
         let s = &self.common;
         if let Some(m) = &s.material {
@@ -137,6 +153,7 @@ impl ShapeDesc {
             let light_keys = [
                 ("direct", s.direct != DirectChoice::Auto),
                 ("luminous_flux", s.luminous_flux.is_some()),
+                ("luminance", s.luminance.is_some()),
                 ("importance", s.importance != 1.0),
             ];
             for (k, given) in light_keys {
@@ -153,12 +170,24 @@ impl ShapeDesc {
         }
         if let Some(v) = s.luminous_flux {
             c.positive(&format!("{key}.luminous_flux"), v as f64);
-            if s.emit_scale.is_some() {
-                c.fail(
-                    format!("{key}.luminous_flux"),
-                    "give one of `emit_scale`, `luminous_flux` (found both)",
-                );
-            }
+        }
+        if let Some(v) = s.luminance {
+            c.positive(&format!("{key}.luminance"), v as f64);
+        }
+        let amounts = [
+            ("emit_scale", s.emit_scale.is_some()),
+            ("luminous_flux", s.luminous_flux.is_some()),
+            ("luminance", s.luminance.is_some()),
+        ];
+        let given: Vec<&str> = amounts.iter().filter(|a| a.1).map(|a| a.0).collect();
+        if given.len() > 1 {
+            c.fail(
+                format!("{key}.{}", given[1]),
+                format!(
+                    "give one of `emit_scale`, `luminous_flux`, `luminance` (found {})",
+                    given.join(" and ")
+                ),
+            );
         }
         crate::scene::lights::check_importance(c, key, s.importance);
         let t = &s.transform;
@@ -184,6 +213,7 @@ impl ShapeDesc {
             ShapeKindDesc::Sphere(s) => s.build(),
             ShapeKindDesc::Disc(s) => s.build(),
             ShapeKindDesc::Mesh(s) => s.build(b, key)?,
+            ShapeKindDesc::Gltf(g) => g.build(),
         };
         let s = &self.common;
         let radiance = match &s.emit {
@@ -191,7 +221,10 @@ impl ShapeDesc {
             Some(e) if s.luminous_flux.is_some() => {
                 Some(b.spectra.emission(e, &format!("{key}.emit"))?)
             }
-            Some(e) => Some(emission(b, key, e, s.emit_scale.unwrap_or(1.0))?),
+            Some(e) => match s.luminance {
+                Some(nits) => Some(scale_to_luminance(b, key, e, nits)?),
+                None => Some(emission(b, key, e, s.emit_scale.unwrap_or(1.0))?),
+            },
             None => None,
         };
         let t = &s.transform;
@@ -233,6 +266,35 @@ pub fn scale_to_flux(
             &at,
             format!(
                 "{lm} lm from {area} m² with this `emit` spectrum needs a radiance of {max:e} \
+                 W/(m^2 sr nm), outside the (0, {MAX_RADIANCE:e}] accepted (the spectrum must \
+                 be visible and the film's sums must not overflow)"
+            ),
+        ));
+    }
+    Ok(scaled)
+}
+
+/// The radiance of an emitter given by its `luminance` (cd/m²): the `emit` spectrum scaled
+/// so that its photometric value is `nits` (`film.units = "photometric"` reads it back).
+fn scale_to_luminance(
+    b: &Builder,
+    key: &str,
+    e: &SpectrumRef,
+    nits: f32,
+) -> Result<Spectrum, SceneError> {
+    let at = format!("{key}.luminance");
+    let radiance = b.spectra.emission(e, &format!("{key}.emit"))?;
+    let w = crate::colour::photometry::luminous_weights(&b.grid)
+        .map_err(|e| b.source.invalid(&at, e.to_string()))?;
+    let per_unit = crate::colour::photometry::photometric(&w, radiance.as_slice(b.grid.n));
+    let k = nits as f64 / per_unit;
+    let scaled = radiance * k as f32;
+    let max = scaled.max_value();
+    if !(k.is_finite() && k > 0.0 && max.is_finite() && max <= MAX_RADIANCE) {
+        return Err(b.source.invalid(
+            &at,
+            format!(
+                "{nits} cd/m² with this `emit` spectrum needs a radiance of {max:e} \
                  W/(m^2 sr nm), outside the (0, {MAX_RADIANCE:e}] accepted (the spectrum must \
                  be visible and the film's sums must not overflow)"
             ),
