@@ -13,6 +13,8 @@ mod check;
 pub mod density_report;
 pub mod desc;
 mod error;
+pub mod identity;
+pub mod info;
 mod lights;
 mod lines;
 mod load;
