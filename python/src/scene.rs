@@ -96,6 +96,8 @@ impl Scene {
         signature = (passes=None, time=None, seed=None, threads=None, pass_range=None, progress=None),
         text_signature = "(self, passes=None, time=None, seed=None, threads=None, pass_range=None, progress=True)"
     )]
+    // The keyword arguments of the Python method, one parameter each.
+    #[allow(clippy::too_many_arguments)]
     fn render(
         &self,
         py: Python<'_>,

@@ -143,3 +143,12 @@ def test_ctrl_c_raises_keyboard_interrupt_and_returns_nothing():
                        cwd=ROOT)
     assert r.returncode == 3, r.stdout + r.stderr
     assert "result None" in r.stdout
+
+
+def test_a_missing_texture_is_a_scene_error_from_render(tmp_path):
+    # Whether loading or building finds it, the error is the scene's, naming the file.
+    text = (ROOT / "scenes" / "fog-cube.toml").read_text()
+    with pytest.raises(brume.SceneError, match="no-such.png"):
+        scene = brume.load(text.replace("textures/brume-pattern.png", "no-such.png"),
+                           set={"camera.width": 8, "camera.height": 8})
+        scene.render(passes=1, progress=False)
