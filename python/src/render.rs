@@ -134,26 +134,9 @@ enum Message {
     Progress(u64, f64),
 }
 
-/// The render thread's result: the film, whether it stopped early, the automatic settings'
-/// choice, and the error that stopped it, if any.
-type Outcome = Result<Rendered, Failure>;
-
-/// Why the render thread gave no film.
-enum Failure {
-    /// The scene could not be built (a texture, mesh or spectrum file): SceneError.
-    Scene(String),
-    /// Anything else: RenderError.
-    Render(String),
-}
-
-impl Failure {
-    fn into_err(self) -> PyErr {
-        match self {
-            Failure::Scene(m) => crate::SceneError::new_err(m),
-            Failure::Render(m) => RenderError::new_err(m),
-        }
-    }
-}
+/// The render thread's result, or why the scene could not be built (a texture, mesh or
+/// spectrum file).
+type Outcome = Result<Rendered, brume::scene::SceneError>;
 
 /// What a render that ran gives back (see [`Outcome`]).
 struct Rendered {
@@ -204,7 +187,7 @@ pub fn render(
         auto,
         failure,
         settings,
-    } = outcome.map_err(Failure::into_err)?;
+    } = outcome.map_err(crate::scene::scene_error)?;
     if let Some(e) = failure {
         return Err(RenderError::new_err(format!(
             "{e} (the {} completed passes are not returned)",
@@ -300,12 +283,11 @@ fn run(
     stop: &AtomicBool,
     tx: mpsc::Sender<Message>,
 ) -> Outcome {
-    let scene_err = |e: brume::scene::SceneError| Failure::Scene(e.to_string());
-    let (scene, warnings) = brume::scene::build_with_warnings(loaded).map_err(scene_err)?;
+    let (scene, warnings) = brume::scene::build_with_warnings(loaded)?;
     for w in &warnings {
         let _ = tx.send(Message::Warning(format!("brume: warning: {w}")));
     }
-    let integrator = brume::scene::build_integrator(loaded, &scene).map_err(scene_err)?;
+    let integrator = brume::scene::build_integrator(loaded, &scene)?;
     let mut renderer = Renderer::starting_at(&scene, integrator, id.seed, req.first);
     // Whether it stopped early matters only for an interrupt, which `watch` reports.
     let _stopped = renderer.run_until(req.budget, stop, |film, elapsed| {
