@@ -1,6 +1,7 @@
 """Type hints of the brume package (docs/python.md)."""
 
 import os
+import pathlib
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -17,7 +18,7 @@ Progress = Union[bool, Callable[[int, int, int], Any]]
 
 class Scene:
     @property
-    def file(self) -> str: ...
+    def file(self) -> pathlib.Path: ...
     @property
     def text(self) -> str: ...
     @property
