@@ -1,54 +1,17 @@
 //! What `render` and `merge` share about film files: their extension, the identity of a render
 //! as the command line resolves it, writing a film's outputs, and comparing identities.
 
-use std::path::{Path, PathBuf};
-
-use anyhow::Context;
+use std::path::PathBuf;
 
 use brume::film::output::{self, OutputOptions};
-use brume::film::{Film, FilmId, Sampling, SpectralImage, checkpoint};
-use brume::scene::LoadedScene;
+use brume::film::{Film, FilmId, SpectralImage, checkpoint};
 use brume::scene::desc::FilmDesc;
 
-/// Extension of film files (checkpoints and parts).
-pub const FILM_EXT: &str = "brume";
-
-pub fn is_film_path(p: &Path) -> bool {
-    p.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case(FILM_EXT))
-}
-
-/// The identity of rendering `scene` with `seed` on this machine: the description, and the
-/// gather budget the renderer will resolve `integrator.max_gather_bytes` to (the same call).
-pub fn film_id(scene: &LoadedScene, seed: u64) -> anyhow::Result<FilmId> {
-    let budget = scene.desc.integrator.gather_budget() as u64;
-    let sampling = Sampling {
-        gather_budget: budget,
-        machine_memory: machine_memory().unwrap_or(0),
-        version: env!("CARGO_PKG_VERSION").to_string(),
-    };
-    Ok(FilmId::new(&scene.desc, seed, sampling)?)
-}
-
-/// Total memory of this machine in bytes, when the system says (Linux).
-pub fn machine_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
-/// The output settings recorded in a film's identity (the scene's `[film]` table).
-pub fn output_options(id: &FilmId) -> anyhow::Result<OutputOptions> {
-    Ok(film_desc(id)?.output_options())
-}
-
-/// The `[film]` table recorded in a film's identity.
-pub fn film_desc(id: &FilmId) -> anyhow::Result<FilmDesc> {
-    let film = id.section("film").cloned().unwrap_or_default();
-    serde_json::from_value(film).context("the film file's output settings are unreadable")
-}
+// Moved to the library (the Python package writes the same files): re-exported for the
+// subcommands.
+pub use brume::scene::identity::{
+    FILM_EXT, film_desc, film_id, is_film_path, machine_memory, output_options,
+};
 
 /// Files written beside the image outputs: a false-colour map `NAME-luminance.png` per image
 /// name (with `film.false_colour`), and the sensors' `NAME.sensors.csv` and `.json` beside the

@@ -1,8 +1,18 @@
 use std::process::ExitCode;
 
-use super::SceneArgs;
+use super::{InfoArgs, SceneArgs};
 
-pub fn run(args: &SceneArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: &InfoArgs) -> anyhow::Result<ExitCode> {
+    if args.json {
+        let scene = brume::scene::load(&args.scene.scene, &args.scene.sets)?;
+        let (value, _) = brume::scene::info::info_json(&scene)?;
+        println!("{}", serde_json::to_string_pretty(&value)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    text(&args.scene)
+}
+
+fn text(args: &SceneArgs) -> anyhow::Result<ExitCode> {
     let scene = brume::scene::load(&args.scene, &args.sets)?;
     // The summary first (it builds each medium on its own, so a medium is described even when
     // something else in the scene fails); then building reads every texture, mesh and

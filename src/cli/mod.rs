@@ -33,7 +33,7 @@ pub enum Command {
     /// bit-identical to a single run (see docs/distributed.md).
     Merge(MergeArgs),
     /// Validate a scene file and summarise it (counts, spectral bins, memory estimate).
-    Info(SceneArgs),
+    Info(InfoArgs),
     /// Print the colour (XYZ, xy, sRGB) of a spectrum: a reflectance under an illuminant, or an
     /// emission spectrum.
     Spectrum(spectrum::SpectrumArgs),
@@ -55,6 +55,16 @@ pub struct SceneArgs {
     /// `--set media=none` switches every medium off (`media.NAME=none`: one medium).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
+}
+
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print the summary as JSON (bins, media per bin with visibility, radius, memory): what
+    /// the Python package's `Scene.info()` returns.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, Args)]

@@ -220,11 +220,7 @@ fn save(
     if film.passes > 0 {
         targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
     }
-    let mut opts = film_files::output_options(id)?;
-    if let Some(c) = auto {
-        opts.attributes
-            .push(("brumeAutoSettings".into(), c.report.join("; ")));
-    }
+    let opts = film_files::output_options(id, auto)?;
     let is_film = |p: &PathBuf| is_film_path(p) || args.checkpoint.as_ref() == Some(p);
     let mut image = None;
     let mut failed = Vec::new();
