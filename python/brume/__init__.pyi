@@ -35,6 +35,7 @@ class Scene:
         threads: Optional[int] = None,
         pass_range: Optional[Tuple[int, int]] = None,
         progress: Progress = True,
+        force: bool = False,
     ) -> "RenderResult":
         """Renders the scene (interpreter released; Ctrl-C raises KeyboardInterrupt)."""
 

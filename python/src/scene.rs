@@ -91,10 +91,12 @@ impl Scene {
     ///
     /// The interpreter is released while rendering. Ctrl-C stops the pass in flight and
     /// raises KeyboardInterrupt (nothing is returned: no partial result). One render runs
-    /// in a process at a time (RenderError otherwise). Bad arguments raise ValueError.
+    /// in a process at a time (RenderError otherwise). Bad arguments raise ValueError. A
+    /// render whose memory estimate exceeds the machine's memory raises RenderError before
+    /// it starts, unless `force=True` (the CLI's `--force`).
     #[pyo3(
-        signature = (passes=None, time=None, seed=None, threads=None, pass_range=None, progress=None),
-        text_signature = "(self, passes=None, time=None, seed=None, threads=None, pass_range=None, progress=True)"
+        signature = (passes=None, time=None, seed=None, threads=None, pass_range=None, progress=None, force=false),
+        text_signature = "(self, passes=None, time=None, seed=None, threads=None, pass_range=None, progress=True, force=False)"
     )]
     // The keyword arguments of the Python method, one parameter each.
     #[allow(clippy::too_many_arguments)]
@@ -107,8 +109,18 @@ impl Scene {
         threads: Option<i64>,
         pass_range: Option<(i64, i64)>,
         progress: Option<Bound<'_, PyAny>>,
+        force: bool,
     ) -> PyResult<RenderResult> {
         let request = Request::new(&self.loaded, passes, time, seed, threads, pass_range)?;
+        if !force {
+            use brume::scene::identity::{MemoryCheckError, memory_check};
+            memory_check(&self.loaded).map_err(|e| match e {
+                MemoryCheckError::Scene(s) => scene_error(s),
+                MemoryCheckError::Over { .. } => {
+                    crate::RenderError::new_err(format!("{e}, or pass force=True"))
+                }
+            })?;
+        }
         render::render(py, &self.loaded, &request, progress)
     }
 

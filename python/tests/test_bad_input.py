@@ -152,3 +152,11 @@ def test_a_missing_texture_is_a_scene_error_from_render(tmp_path):
         scene = brume.load(text.replace("textures/brume-pattern.png", "no-such.png"),
                            set={"camera.width": 8, "camera.height": 8})
         scene.render(passes=1, progress=False)
+
+
+def test_a_render_larger_than_memory_is_refused_unless_forced():
+    # 32768 x 4096 pixels of 64 bins: the film alone is over 24 GiB, refused before any
+    # allocation, as the CLI refuses it without --force.
+    scene = brume.load(SCENE, set={"camera.width": 32768, "camera.height": 4096, "film.bins": 64})
+    with pytest.raises(brume.RenderError, match="force=True"):
+        scene.render(passes=1, progress=False)

@@ -65,3 +65,51 @@ pub fn output_options(
     }
     Ok(opts)
 }
+
+/// Why `memory_check` refuses a render.
+#[derive(Debug, thiserror::Error)]
+pub enum MemoryCheckError {
+    /// The scene's spectral grid is invalid (the film's bins cannot be counted).
+    #[error(transparent)]
+    Scene(#[from] super::SceneError),
+    /// The memory estimate exceeds the machine's memory (the sizes, formatted).
+    #[error(
+        "the render needs about {needs} (film {film}, gather {gather} per tile) but the machine \
+         has {has}; lower camera.width/height or film.bins"
+    )]
+    Over {
+        needs: String,
+        film: String,
+        gather: String,
+        has: String,
+    },
+}
+
+/// Refuses a render of `scene` whose memory estimate (`MemoryEstimate`, the figures
+/// `brume info` prints) exceeds this machine's memory; Ok where the system does not say how
+/// much it has. The command line and the Python package both check it before rendering.
+pub fn memory_check(scene: &LoadedScene) -> Result<(), MemoryCheckError> {
+    let Some(ram) = machine_memory() else {
+        return Ok(());
+    };
+    let desc = &scene.desc;
+    // Every bin the film holds, a narrow one per spectral line included.
+    let bins = scene.grid()?.n;
+    let est = crate::integrator::MemoryEstimate::new(
+        &desc.integrator,
+        (desc.camera.width, desc.camera.height),
+        bins,
+        !desc.media.is_empty(),
+    );
+    let ram = ram as f64;
+    if est.total() > ram {
+        let f = crate::integrator::format_bytes;
+        return Err(MemoryCheckError::Over {
+            needs: f(est.total()),
+            film: f(est.film_bytes),
+            gather: f(est.gather_held()),
+            has: f(ram),
+        });
+    }
+    Ok(())
+}

@@ -17,7 +17,7 @@ use super::outputs;
 use super::progress::Progress;
 use brume::film::{Film, FilmFile, FilmId, checkpoint, output};
 use brume::integrator::auto::Choice;
-use brume::integrator::{Budget, MemoryEstimate, OverBudget, Renderer, format_bytes};
+use brume::integrator::{Budget, OverBudget, Renderer};
 use brume::scene::LoadedScene;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
@@ -316,31 +316,15 @@ fn report(
     }
 }
 
-/// Refuses a render whose memory estimate (`MemoryEstimate`, the figures `brume info` prints)
-/// exceeds the machine's memory, unless forced.
+/// Refuses a render whose memory estimate exceeds the machine's memory, unless forced
+/// (`brume::scene::identity::memory_check`).
 fn check_memory(loaded: &brume::scene::LoadedScene, force: bool) -> anyhow::Result<()> {
-    let Some(ram) = film_files::machine_memory() else {
+    if force {
         return Ok(());
-    };
-    let desc = &loaded.desc;
-    // Every bin the film holds, a narrow one per spectral line included.
-    let bins = loaded.grid()?.n;
-    let est = MemoryEstimate::new(
-        &desc.integrator,
-        (desc.camera.width, desc.camera.height),
-        bins,
-        !desc.media.is_empty(),
-    );
-    let ram = ram as f64;
-    if est.total() > ram && !force {
-        anyhow::bail!(
-            "the render needs about {} (film {}, gather {} per tile) but the machine has {}; \
-             lower camera.width/height or film.bins, or pass --force",
-            format_bytes(est.total()),
-            format_bytes(est.film_bytes),
-            format_bytes(est.gather_held()),
-            format_bytes(ram)
-        );
     }
-    Ok(())
+    use brume::scene::identity::{MemoryCheckError, memory_check};
+    memory_check(loaded).map_err(|e| match e {
+        MemoryCheckError::Over { .. } => anyhow::anyhow!("{e}, or pass --force"),
+        MemoryCheckError::Scene(s) => s.into(),
+    })
 }
