@@ -94,26 +94,13 @@ impl<'a> Tracker<'a> {
         if sigma.is_nan() || sigma <= 0.0 {
             return None;
         }
-        let (a, b) = self.ray;
-        self.majorant
-            .segments(self.ray, from as f64, to as f64, |t0, t1, m| {
-                if m <= 0.0 {
-                    return true;
-                }
-                let rate = m as f64 * sigma as f64;
-                let mut t = t0;
-                loop {
-                    t += exp_step(rate, rng.random());
-                    if t >= t1 {
-                        return true;
-                    }
-                    let rho = self.majorant.grid().at_index_in_box(a + b * t);
-                    if (rng.random::<f32>() as f64) * (m as f64) < rho {
-                        hit = Some(t as f32);
-                        return false;
-                    }
-                }
-            });
+        self.tentative((from, to), sigma, rng, |rng, t, rho, m| {
+            if (rng.random::<f32>() as f64) * (m as f64) < rho {
+                hit = Some(t as f32);
+                return false;
+            }
+            true
+        });
         // A collision rounded to the segment's end in f32 stays inside it.
         hit.filter(|&t| t < to)
     }
@@ -132,30 +119,46 @@ impl<'a> Tracker<'a> {
         if st_max.is_nan() || st_max <= 0.0 {
             return tr;
         }
+        self.tentative((from, to), st_max, rng, |_, _, rho, m| {
+            let r = (rho / (m as f64 * st_max as f64)) as f32;
+            for l in 0..n {
+                tr.0[l] *= (1.0 - r * st.0[l]).max(0.0);
+            }
+            tr.0[..n].iter().any(|&x| x != 0.0)
+        });
+        tr
+    }
+
+    /// Tentative collisions over `[from, to]` at each block's majorant times `sigma`
+    /// (exponential steps restarted at every block face, as memorylessness allows), calling
+    /// `at(rng, t, rho(t), majorant)` at each until it returns false. Shared by delta and
+    /// ratio tracking.
+    fn tentative<R: Rng + ?Sized>(
+        &self,
+        (from, to): (f32, f32),
+        sigma: f32,
+        rng: &mut R,
+        mut at: impl FnMut(&mut R, f64, f64, f32) -> bool,
+    ) {
         let (a, b) = self.ray;
         self.majorant
             .segments(self.ray, from as f64, to as f64, |t0, t1, m| {
                 if m <= 0.0 {
                     return true;
                 }
-                let bar = m as f64 * st_max as f64;
+                let rate = m as f64 * sigma as f64;
                 let mut t = t0;
                 loop {
-                    t += exp_step(bar, rng.random());
+                    t += exp_step(rate, rng.random());
                     if t >= t1 {
                         return true;
                     }
                     let rho = self.majorant.grid().at_index_in_box(a + b * t);
-                    let r = (rho / bar) as f32;
-                    for l in 0..n {
-                        tr.0[l] *= (1.0 - r * st.0[l]).max(0.0);
-                    }
-                    if tr.0[..n].iter().all(|&x| x == 0.0) {
+                    if !at(rng, t, rho, m) {
                         return false;
                     }
                 }
             });
-        tr
     }
 }
 
