@@ -41,8 +41,9 @@ const ESTIMATORS: [(&str, &[&str]); 5] = [
 const MODES: [&str; 2] = ["first-extinction", "see-through"];
 
 /// Settings that pin the paper's pure method and a tiny, fast render.
-const COMMON: [&str; 6] = [
+const COMMON: [&str; 7] = [
     "integrator.direct=\"photons\"",
+    "integrator.sampler=\"independent\"",
     "camera.width=16",
     "camera.height=12",
     "integrator.forward_rays=3000",
@@ -794,8 +795,10 @@ fn every_scene_and_estimator_is_bit_identical_to_the_recorded_images() {
 /// sampled from camera paths (the table above pins the paper's pure photon method, so it
 /// cannot see a change in next-event estimation, its MIS weights or shadow rays), each scene
 /// once with its own estimator and mode, tiny.
-const NEE: [&str; 6] = [
+const NEE: [&str; 8] = [
     "integrator.direct=\"nee\"",
+    "integrator.sampler=\"independent\"",
+    "integrator.expected_transmission=false",
     "camera.width=16",
     "camera.height=12",
     "integrator.forward_rays=3000",

@@ -169,7 +169,13 @@ fn trace_row(
         }
         let pixel = y * w + x;
         let mut nee = NeeSums::new(job.light_layers);
-        for _ in 0..integrator.camera_samples {
+        // The pixel's camera paths of this pass are the points of its own Sobol sequence (rng
+        // module comment): stratified among themselves, scrambled apart from other pixels'.
+        let sequence = rng::sequence(job.seed, job.pass, Domain::Camera, pixel as u64);
+        for s in 0..integrator.camera_samples {
+            if integrator.settings.sampler.stratifies() {
+                rng.begin_sample(sequence, s as u64);
+            }
             let px = x as f32 + rng.random::<f32>();
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);

@@ -273,7 +273,8 @@ impl PathStep for CameraPath<'_> {
             }
         };
         // An endless segment (a medium without a boundary ahead) keeps the walk's outcome.
-        if integrator.settings.expected_transmission && self.first_extinction() && len.is_finite() {
+        if integrator.settings.expected_transmission() && self.first_extinction() && len.is_finite()
+        {
             let tr = track.map(|t| t.transmittance((0.0, len), &med.sigma_t, self.n, rng));
             return self.expected_transmission(m, depth, tr);
         }

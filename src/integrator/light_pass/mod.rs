@@ -84,6 +84,10 @@ pub fn light_pass(
                 while let Some((c, mut sink)) = shared.next(stop, &empty) {
                     let mut rng =
                         rng::stream(job.seed, job.pass, Domain::Light, (job.tile << 40) | c);
+                    // Ray `c * chunk + i` of the pass takes point `c * chunk + i` of the pass's
+                    // Sobol sequence (rng module comment): the pass's rays are stratified as a
+                    // whole, whichever worker traces them.
+                    let sequence = rng::sequence(job.seed, job.pass, Domain::Light, job.tile);
                     let mut tracer = ForwardTracer {
                         scene,
                         integrator,
@@ -112,6 +116,9 @@ pub fn light_pass(
                         // A chunk cut short is never used: `next` sees `stop` and aborts.
                         if i % STOP_CHECK == 0 && stop.load(Ordering::Relaxed) {
                             break;
+                        }
+                        if integrator.settings.sampler.stratifies() {
+                            rng.begin_sample(sequence, c * chunk + i);
                         }
                         tracer.trace(&mut rng);
                     }
