@@ -170,8 +170,9 @@ def machine_state(settle: float) -> dict:
     t0 = time.perf_counter()
     while os.getloadavg()[0] > IDLE_LOAD and time.perf_counter() - t0 < settle:
         time.sleep(2.0)
+    waited = time.perf_counter() - t0
     load = os.getloadavg()
-    st = {"load_before": list(load), "busy_before": cpu_busy(), "waited_s": time.perf_counter() - t0}
+    st = {"load_before": list(load), "busy_before": cpu_busy(), "waited_s": waited}
     st["idle"] = load[0] <= IDLE_LOAD
     if not st["idle"]:
         print(f"WARNING: NOT IDLE: 1-min load average {load[0]:.2f} > {IDLE_LOAD} at a run's start "
@@ -362,7 +363,7 @@ def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_re
     else:
         print(f"reference: reusing {folder}", flush=True)
     a, b = (read_rgb(folder / n) for n in names)
-    return {"mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
+    return {"key": key, "mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
             "var_bin4": float(np.mean((bin4(a) - bin4(b)) ** 2) / 4), "folder": str(folder), **rec}
 
 
