@@ -291,14 +291,23 @@ def pilot(make_peer, seconds: float) -> tuple[Peer, dict]:
         a, ra = peer.render(seconds, M_PILOT + i * 100_000)
         b, rb = peer.render(seconds, M_PILOT + i * 100_000 + 50_000)
         t = 0.5 * (ra["wall_s"] + rb["wall_s"])
-        rmse = np.sqrt(np.mean((a - b) ** 2) / 2) / np.mean(0.5 * (a + b))
+        bad = nonfinite(a) + nonfinite(b)
+        # An image with NaN or inf pixels is unusable whatever its RMSE elsewhere (Mitsuba 3.9's
+        # stratified and multijitter leave one NaN pixel per 64-spp call on smoke-plume).
+        rmse = np.inf if bad else np.sqrt(np.mean((a - b) ** 2) / 2) / np.mean(0.5 * (a + b))
         table[name] = {"rel_rmse": float(rmse), "rel_rmse_nominal": float(rmse * np.sqrt(t / seconds)),
-                       "wall_s": [ra["wall_s"], rb["wall_s"]], "spp": [ra["spp"], rb["spp"]]}
-        print(f"pilot {name:12s}: rel RMSE {table[name]['rel_rmse_nominal']:.4g} at {seconds:g} s "
-              f"({ra['spp']} spp per image)", flush=True)
+                       "nonfinite_pixels": bad, "wall_s": [ra["wall_s"], rb["wall_s"]], "spp": [ra["spp"], rb["spp"]]}
+        why = f"DISQUALIFIED: {bad} NaN/inf pixels" if bad else f"rel RMSE {table[name]['rel_rmse_nominal']:.4g} at {seconds:g} s"
+        print(f"pilot {name:12s}: {why} ({ra['spp']} spp per image)", flush=True)
         peers[name] = peer
     best = min(table, key=lambda k: table[k]["rel_rmse_nominal"])
+    if not np.isfinite(table[best]["rel_rmse_nominal"]):
+        raise SystemExit("pilot: every sampler's images have NaN/inf pixels")
     return peers[best], {"seconds": seconds, "samplers": table, "chosen": best}
+
+
+def nonfinite(img: np.ndarray) -> int:
+    return int((~np.isfinite(img).all(-1)).sum())
 
 
 def chunk_ok(chunk: int) -> None:
@@ -363,6 +372,8 @@ def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_re
     else:
         print(f"reference: reusing {folder}", flush=True)
     a, b = (read_rgb(folder / n) for n in names)
+    if nonfinite(a) + nonfinite(b):
+        raise SystemExit(f"{folder}: the reference has NaN/inf pixels")
     return {"key": key, "mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
             "var_bin4": float(np.mean((bin4(a) - bin4(b)) ** 2) / 4), "folder": str(folder), **rec}
 
@@ -370,13 +381,18 @@ def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_re
 def scores(img: np.ndarray, ref: dict, wall: float, budget: float) -> dict:
     """Relative RMSE per pixel and of 4x4 bins, the reference's noise removed, as measured and
     scaled to the nominal budget; and k = sum(ref) / sum(img), the scale check."""
+    bad = nonfinite(img)
+    if bad:
+        # Counted as error, not hidden: such a run's scores are NaN and its record says why.
+        print(f"WARNING: {bad} NaN/inf pixels in this image: its scores are NaN", file=sys.stderr, flush=True)
     m = float(ref["mean"].mean())
-    mse = max(float(np.mean((img - ref["mean"]) ** 2)) - ref["var"], 0.0)
-    mse4 = max(float(np.mean((bin4(img) - bin4(ref["mean"])) ** 2)) - ref["var_bin4"], 0.0)
+    nan = float("nan")
+    mse = nan if bad else max(float(np.mean((img - ref["mean"]) ** 2)) - ref["var"], 0.0)
+    mse4 = nan if bad else max(float(np.mean((bin4(img) - bin4(ref["mean"])) ** 2)) - ref["var_bin4"], 0.0)
     s = np.sqrt(wall / budget)
     r, r4 = np.sqrt(mse) / m, np.sqrt(mse4) / m
     return {"rel_rmse": r, "rel_rmse_bin4": r4, "rel_rmse_nominal": r * s, "rel_rmse_bin4_nominal": r4 * s,
-            "k": float(ref["mean"].sum() / img.sum())}
+            "k": float(ref["mean"].sum() / img.sum()), "nonfinite_pixels": bad}
 
 
 # ----------------------------------------------------------------------------- runs
@@ -433,8 +449,8 @@ def summarise(rows: list[dict], times: list[float]) -> dict:
         per = {}
         for who in ("brume", "mitsuba"):
             mine = [r for r in rows if r["renderer"] == who and r["budget_s"] == t]
-            per[who] = {k: {"median": float(np.median([r[k] for r in mine])), "min": float(min(r[k] for r in mine)),
-                            "max": float(max(r[k] for r in mine))} for k in STATS}
+            per[who] = {k: {"median": float(np.median([r[k] for r in mine])), "min": float(np.min([r[k] for r in mine])),
+                            "max": float(np.max([r[k] for r in mine]))} for k in STATS}
             per[who]["runs"] = len(mine)
             per[who]["not_idle_runs"] = sum(not r["idle"] for r in mine)
         per["ratio_brume_over_mitsuba"] = {
@@ -578,7 +594,13 @@ def print_summary(a, ref: dict, fixed: dict | None, summary: dict, md: str) -> N
     if fixed:
         print(f"brume fixed cost (start-up, load, automatic pilots; in brume's wall time, not in Mitsuba's): "
               f"{fixed['fixed_wall_s']:.2f} s; per pass {fixed['per_pass_wall_s']:.3f} s; `brume info` {fixed['info_wall_s']:.2f} s")
+    noise = np.sqrt(ref["var"]) / ref["mean"].mean()
     for t, per in summary.items():
+        least = min(per[w]["rel_rmse"]["median"] for w in ("brume", "mitsuba"))
+        if noise > 0.5 * least:
+            # The subtraction is unbiased, but its own error grows with the noise it removes.
+            print(f"WARNING: T = {t} s: the reference's noise ({noise:.3g}) is over half the smallest RMSE measured "
+                  f"({least:.3g}): render a longer reference (--ref-seconds)", flush=True)
         print(f"T = {t} s: k (scale check) brume {per['brume']['k']['median']:.4f}, Mitsuba {per['mitsuba']['k']['median']:.4f}; "
               f"ratio brume / Mitsuba per pixel {per['ratio_brume_over_mitsuba'].get('rel_rmse_nominal', float('nan')):.3f}x, "
               f"4x4 {per['ratio_brume_over_mitsuba'].get('rel_rmse_bin4_nominal', float('nan')):.3f}x")
