@@ -248,6 +248,14 @@ def spectral_media(desc: dict, base: Path) -> bool:
 
 
 def check_mappable(desc: dict, base: Path) -> None:
+    for i, light in enumerate(desc.get("lights", [])):
+        sp = light.get("spectrum")
+        if isinstance(sp, dict) and ("line" in sp or "lines" in sp):
+            raise NotImplementedError(
+                f"lights.{i}: a spectral line (brume gives it a 0.1 nm bin of its own and splits the film's bins "
+                f"around it; Mitsuba would sample that box with 1/4000 of its wavelengths); compare with a band "
+                f"for both renderers, e.g. --set 'lights.{i}.spectrum=\"laser-532nm.csv\"' (the 14 nm triangle "
+                f"the golden images pin)")
     grid = mitsuba_scene.Grid(desc.get("film", {}))
     if density_media.bin_groups(desc, base, grid) is not None:
         raise NotImplementedError(
