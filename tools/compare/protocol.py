@@ -61,9 +61,12 @@ favoured brume in several ways at once):
 
 Outputs: <out>.json (everything: runs, pilot, reference, commands, loads), <out>.md (table rows
 for docs/performance.md), a printed summary; EXRs in the work folder (<out>-work by default).
-Not mapped: a chromatic medium with a density (Mitsuba's grid medium is grey: it needs one
-render per bin group, density_check.py; not a timed render), and whatever mitsuba_scene.py
-refuses (it names the key).
+Not mapped (refused with the reason, never approximated silently): a chromatic medium with a
+density (Mitsuba's grid medium is grey: it needs one render per bin group, density_check.py, not
+one timed render); a light with a spectral line (fog-room-laser's laser: protocol.sh gives both
+renderers the 14 nm triangle instead, by --set); whatever mitsuba_scene.py refuses (it names the
+key). A Mitsuba sampler whose images hold NaN or inf pixels is disqualified by the pilot (3.9.1's
+stratified and multijitter leave about one NaN pixel per 64-spp call on smoke-plume).
 """
 
 from __future__ import annotations
