@@ -324,7 +324,9 @@ def choose_peer(a, s: Setup, mi, ps: dict) -> tuple[Peer, dict]:
     if rec is not None:
         print(f"pilot: reusing {folder}: {rec['pilot']['chosen']}", flush=True)
         return make(rec["pilot"]["chosen"]), rec["pilot"]
+    state = machine_state(a.settle)  # the pilot compares timed renders: it wants an idle machine too
     peer, result = pilot(make, a.pilot_seconds)
+    result["machine_before"] = state
     store(folder, key, {"pilot": result})
     return peer, result
 
