@@ -371,7 +371,10 @@ def beam_length(p, d, desc: dict) -> float:
     return min(ts) if ts else 1.0
 
 
-def _camera(mi, cam: dict, spp: int) -> dict:
+SAMPLERS = ("independent", "stratified", "multijitter", "ldsampler")
+
+
+def _camera(mi, cam: dict, spp: int, sampler: str = "independent") -> dict:
     T = mi.ScalarTransform4f
     look = T().look_at(origin=cam["position"], target=cam["look_at"], up=cam.get("up", [0, 1, 0]))
     film = {
@@ -381,7 +384,7 @@ def _camera(mi, cam: dict, spp: int) -> dict:
         "rfilter": {"type": "box"},
         "pixel_format": "rgb",
     }
-    sampler = {"type": "independent", "sample_count": spp}
+    sampler = {"type": sampler, "sample_count": spp}
     kind = cam.get("type", "perspective")
     if kind == "orthographic":
         to_world = look @ T().scale([cam["view_width"] / 2, cam["view_height"] / 2, 1])
@@ -486,6 +489,8 @@ def load(
     integrator: str = "volpath",
     spot_profile: str = "ramp",
     bins: list[int] | None = None,
+    sampler: str = "independent",
+    desc: dict | None = None,
 ) -> dict:
     """Returns the Mitsuba scene dict for `scene_path` (the variant must already be set).
     `laser_radius` replaces the lasers' radius (a wider cone converges faster in Mitsuba: a
@@ -497,14 +502,21 @@ def load(
     cos theta) through a projected texture (`spot_profile_texture`).
     Media with a `density` become `heterogeneous` (density_media.py); `bins` (film bin indices)
     renders only the light of those bins, with their coefficients in such media: the per-group
-    images of density_media.bin_groups add up to a chromatic scene's image."""
+    images of density_media.bin_groups add up to a chromatic scene's image.
+    `sampler`: Mitsuba's sampler (one of SAMPLERS; stratified and multijitter want a square
+    spp, ldsampler a power of two). `desc`: the scene already parsed (and edited, as the
+    protocol's --set does) instead of reading `scene_path`, which still gives the folder that
+    relative paths resolve against."""
     import mitsuba as mi
 
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator {integrator!r}: one of {INTEGRATORS}")
     if spot_profile not in SPOT_PROFILES:
         raise ValueError(f"spot_profile {spot_profile!r}: one of {SPOT_PROFILES}")
-    desc = tomllib.loads(scene_path.read_text())
+    if sampler not in SAMPLERS:
+        raise ValueError(f"sampler {sampler!r}: one of {SAMPLERS}")
+    if desc is None:
+        desc = tomllib.loads(scene_path.read_text())
     base = scene_path.parent
     grid = Grid(desc.get("film", {}))
     max_depth = desc.get("integrator", {}).get("max_depth", 32)
@@ -523,7 +535,7 @@ def load(
                 return {"type": "ref", "id": f"medium_{b['interior']}"}
         return None
 
-    sensor = _camera(mi, desc["camera"], spp)
+    sensor = _camera(mi, desc["camera"], spp, sampler)
     if (m := medium_at(desc["camera"]["position"])) is not None:
         sensor["medium"] = m
     d["sensor"] = sensor
