@@ -41,11 +41,12 @@ pub enum GatherMode {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Sampler {
-    /// An Owen-scrambled Sobol point per sample, scrambled anew in every pass: a pass's
-    /// forward rays, and a pixel's camera paths in a pass, are stratified.
-    #[default]
+    /// An Owen-scrambled Sobol point per forward ray, scrambled anew in every pass: a pass's
+    /// forward rays are stratified. Pays with `direct = "photons"` (forward rays carry the
+    /// direct light); with next-event estimation it measured no gain (docs/performance.md).
     Sobol,
-    /// Independent pseudo-random numbers (the images brume made before the Sobol sampler).
+    /// Independent pseudo-random numbers.
+    #[default]
     Independent,
 }
 
@@ -160,7 +161,7 @@ impl Default for IntegratorDesc {
             sensor_paths: DEFAULT_SENSOR_PATHS,
             channel_pick: ChannelPick::Throughput,
             channel_floor: 0.1,
-            sampler: Sampler::Sobol,
+            sampler: Sampler::Independent,
             max_gather_bytes: 0,
             passes: 16,
             seed: 0,
