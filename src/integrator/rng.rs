@@ -60,14 +60,6 @@ pub struct Rng {
 }
 
 impl Rng {
-    /// Plain pseudo-random numbers from a seed (tests, and work outside a pass).
-    pub fn seed_from_u64(seed: u64) -> Rng {
-        Rng {
-            pcg: Pcg64Mcg::seed_from_u64(seed),
-            point: None,
-        }
-    }
-
     /// Sample `index` of the pass's sequence `key` (from [`sequence`]) starts: its next
     /// [`QMC_DIMS`] numbers come from its Sobol point.
     pub fn begin_sample(&mut self, key: u64, index: u64) {
@@ -142,7 +134,10 @@ mod tests {
     /// does not use Sobol points keeps its images bit for bit).
     #[test]
     fn plain_stream_is_pcg() {
-        let mut a = Rng::seed_from_u64(5);
+        let mut a = Rng {
+            pcg: Pcg64Mcg::seed_from_u64(5),
+            point: None,
+        };
         let mut b = Pcg64Mcg::seed_from_u64(5);
         for _ in 0..10 {
             assert_eq!(a.random::<f32>(), b.random::<f32>());
