@@ -32,6 +32,9 @@ pub struct CameraJob {
     pub budget_bytes: usize,
     /// Whether next-event estimates are kept per light (the film has light layers).
     pub light_layers: bool,
+    /// Camera paths are traced in the pixels of every `stride`-th row and column only (1:
+    /// every pixel; automatic settings' pilots sample a lattice, `auto::PILOT_STRIDE`).
+    pub stride: u32,
 }
 
 /// Why a camera pass gave no tile.
@@ -160,10 +163,14 @@ fn trace_row(
 ) -> Option<CameraOutput> {
     let w = scene.camera.resolution().0;
     let mut out = CameraOutput::new(scene.grid.n);
+    let stride = job.stride.max(1);
+    if y % stride != 0 {
+        return Some(out);
+    }
     let mut rng = rng::stream(job.seed, job.pass, Domain::Camera, y as u64);
     let max_depth = integrator.settings.max_depth;
     let mut counted = 0;
-    for x in 0..w {
+    for x in (0..w).step_by(stride as usize) {
         if stop.load(Ordering::Relaxed) {
             return None;
         }

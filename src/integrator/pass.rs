@@ -85,6 +85,7 @@ impl<'a> Renderer<'a> {
                 &integrator.settings,
                 scene.media.len(),
                 integrator.pass_config(),
+                (w, h),
             ),
             sensors: sensor_points(scene),
             integrator,
@@ -263,6 +264,7 @@ impl<'a> Renderer<'a> {
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
         let mut work = Work::default();
+        let stride = self.tuner.as_ref().map_or(1, |t| t.pixel_stride(pass));
         let sensors = self.sensor_pass(pass, stop)?;
         let (scene, integrator) = (self.scene, &self.integrator);
         let mut row = 0;
@@ -276,6 +278,7 @@ impl<'a> Renderer<'a> {
                 first_row: row,
                 budget_bytes: budget,
                 light_layers: buf.lights > 0,
+                stride,
             };
             let (mut out, next) = match camera_pass(scene, integrator, &job, stop) {
                 Ok(tile) => tile,

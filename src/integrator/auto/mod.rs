@@ -34,6 +34,14 @@ pub const Q_PILOT: f32 = 0.25;
 pub const BUDGET_FACTOR: u64 = 4;
 /// Passes per pilot configuration: two give an unbiased variance per pixel.
 pub const REPEATS: u64 = 2;
+/// Pilots that are not film passes trace camera paths only in the pixels of every
+/// `PILOT_STRIDE`-th row and column, and (with automatic forward rays) `PILOT_STRIDE^2` times
+/// fewer forward rays than the base: each pilot costs about `PILOT_STRIDE^2` times less. Their
+/// variance and pixel-bound work are scaled back to the whole image (`Tuner::record`); the
+/// noise model is exact in its form (`model::NoiseSplit`), so fitting it at fewer rays only
+/// makes its estimates noisier. Fog-cube at defaults: the pilots took 4.9 s of a 10 s render
+/// before (docs/performance.md).
+pub const PILOT_STRIDE: u32 = 2;
 /// The budget search's limits: camera paths per pixel, and forward rays per pass.
 pub const MAX_CAMERA_SAMPLES: u32 = 16;
 pub const RAYS_RANGE: (u64, u64) = (10_000, 4_000_000);
@@ -127,7 +135,11 @@ pub struct Choice {
 /// Plans the pilot passes and makes the choice from them.
 #[derive(Clone, Debug)]
 pub struct Tuner {
+    /// The scene's configuration: the fixed values, and the fallbacks of the automatic ones.
+    base: PassConfig,
     pilots: Vec<(Role, PassConfig)>,
+    /// Image width and height (for the pilots' pixel lattice).
+    resolution: (u32, u32),
     auto_rays: bool,
     auto_samples: bool,
     /// Pilot passes recorded so far (always a prefix of the pilot passes).
@@ -139,10 +151,15 @@ pub struct Tuner {
 }
 
 impl Tuner {
-    /// The tuner of `desc` for a scene of `media` media, with the base configuration `base`
-    /// (the fixed values, and the fallbacks of the automatic ones); None when nothing is
-    /// automatic (or q is automatic but nothing depends on it).
-    pub fn new(desc: &IntegratorDesc, media: usize, base: PassConfig) -> Option<Self> {
+    /// The tuner of `desc` for a scene of `media` media and an image of `resolution` pixels,
+    /// with the base configuration `base` (the fixed values, and the fallbacks of the automatic
+    /// ones); None when nothing is automatic (or q is automatic but nothing depends on it).
+    pub fn new(
+        desc: &IntegratorDesc,
+        media: usize,
+        base: PassConfig,
+        resolution: (u32, u32),
+    ) -> Option<Self> {
         let spheres = desc.volume == VolumeKind::Spheres;
         let auto_q = desc.q.value().is_none() && spheres && media > 0;
         let auto_rays = desc.forward_rays.value().is_none();
@@ -150,26 +167,34 @@ impl Tuner {
         if !(auto_q || auto_rays || auto_samples) {
             return None;
         }
-        let mut pilots = vec![(Role::Base, base.clone())];
+        // Pilots outside the film (automatic budgets) sample with fewer forward rays.
+        let mut pilot = base.clone();
+        if auto_rays {
+            let shrink = u64::from(PILOT_STRIDE * PILOT_STRIDE);
+            pilot.forward_rays = (base.forward_rays / shrink).max(1);
+        }
+        let mut pilots = vec![(Role::Base, pilot.clone())];
         if auto_q {
             for m in 0..media {
-                let mut c = base.clone();
+                let mut c = pilot.clone();
                 c.q[m] = Q_PILOT;
                 pilots.push((Role::Medium(m), c));
             }
         }
         if auto_rays {
-            let mut c = base.clone();
+            let mut c = pilot.clone();
             c.forward_rays *= BUDGET_FACTOR;
             pilots.push((Role::Rays, c));
         }
         if auto_samples {
-            let mut c = base.clone();
+            let mut c = pilot;
             c.camera_samples *= BUDGET_FACTOR as u32;
             pilots.push((Role::Samples, c));
         }
         Some(Self {
+            base,
             pilots,
+            resolution,
             auto_rays,
             auto_samples,
             recorded: 0,
@@ -204,9 +229,9 @@ impl Tuner {
             format!(
                 "{n} pilot passes rendered before the film's first pass and NOT in the film \
                  (every process of the render traces them first, however few passes it asks \
-                 for: a render of N passes traces N + {n}, and its first pass takes about as \
-                 long as {})",
-                n + 1
+                 for: a render of N passes traces N + {n}; each pilot traces camera paths in \
+                 one pixel of {k} and, with automatic forward rays, {k} times fewer of them)",
+                k = PILOT_STRIDE * PILOT_STRIDE
             )
         }
     }
@@ -217,6 +242,16 @@ impl Tuner {
             0
         } else {
             self.pilot_passes()
+        }
+    }
+
+    /// The camera pass of pass `pass` traces the pixels of every `stride`-th row and column
+    /// (1: every pixel): pilots that are not film passes sample a lattice of the image.
+    pub fn pixel_stride(&self, pass: u64) -> u32 {
+        if pass < self.pilot_passes() && !self.pilots_join_film() {
+            PILOT_STRIDE
+        } else {
+            1
         }
     }
 
@@ -238,11 +273,22 @@ impl Tuner {
         self.choice.as_ref()
     }
 
-    /// Records pass `pass` (its per-pixel totals and work) if it is the next pilot pass.
+    /// Records pass `pass` (its per-pixel totals and work) if it is the next pilot pass. A pilot
+    /// on a pixel lattice (`pixel_stride`) keeps the lattice's pixels, and its variance and
+    /// pixel-bound work (camera paths, volumes, gather hits) are scaled to the whole image.
     pub fn record(&mut self, pass: u64, totals: Vec<f64>, work: Work) {
         if pass != self.recorded || pass >= self.pilot_passes() {
             return;
         }
+        let stride = self.pixel_stride(pass);
+        let totals = if stride > 1 {
+            self.on_lattice(&totals, stride)
+        } else {
+            totals
+        };
+        // A lattice of 1/k of the pixels: its sums times k estimate the image's.
+        let k = self.pixels() as f64 / totals.len().max(1) as f64;
+        let work = scaled(&work, k);
         self.recorded += 1;
         let Some(first) = self.first.take() else {
             self.first = Some(totals);
@@ -261,6 +307,7 @@ impl Tuner {
             variance += d;
             d2 += d * d;
         }
+        let (variance, d2) = (variance * k, d2 * k * k);
         if let Some(m) = self.measures.last_mut() {
             m.variance = variance;
             m.se = (2.0 / 3.0 * d2).sqrt();
@@ -269,6 +316,20 @@ impl Tuner {
         if self.recorded == self.pilot_passes() {
             self.choice = Some(self.choose());
         }
+    }
+
+    fn pixels(&self) -> usize {
+        self.resolution.0 as usize * self.resolution.1 as usize
+    }
+
+    /// The totals of the pixels on the lattice of every `stride`-th row and column.
+    fn on_lattice(&self, totals: &[f64], stride: u32) -> Vec<f64> {
+        let (w, h) = self.resolution;
+        (0..h)
+            .step_by(stride as usize)
+            .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
+            .filter_map(|(x, y)| totals.get((y * w + x) as usize).copied())
+            .collect()
     }
 
     fn measure(&self, role: Role) -> Option<(&PassConfig, Measure)> {
@@ -383,7 +444,7 @@ impl Tuner {
             config.camera_samples = 1;
         }
         if self.auto_rays {
-            config.forward_rays = RAYS_RANGE.0.max(config.forward_rays / f);
+            config.forward_rays = RAYS_RANGE.0.max(self.base.forward_rays / f);
         }
         report.push(format!(
             "budgets: the cheapest, camera paths {} and forward rays {}: more of either did \
@@ -393,7 +454,8 @@ impl Tuner {
     }
 
     /// Sets the automatic budgets for a pass whose variance is `scale` times the base pilot's
-    /// and whose cost is `cost`.
+    /// and whose cost is `cost`. The models are fitted at the pilots' budgets (`config`'s on
+    /// entry); the search's range and the budgets the pilots say nothing about are the scene's.
     fn choose_budgets(
         &self,
         config: &mut PassConfig,
@@ -428,16 +490,17 @@ impl Tuner {
             per_ray: rays * r / n,
             per_pair: hits * r / (s * n),
         };
-        // The models are fitted between the pilots: search within a factor BUDGET_FACTOR^2
-        // of them, not far beyond.
+        // The models are fitted near the pilots: search within a factor BUDGET_FACTOR^2 of
+        // the scene's budgets, not far beyond.
         let f = BUDGET_FACTOR * BUDGET_FACTOR;
+        let base = &self.base;
         let search = BudgetSearch {
-            samples: samples_gain.is_none().then_some(config.camera_samples),
-            max_samples: MAX_CAMERA_SAMPLES.min(config.camera_samples * f as u32),
-            rays: rays_gain.is_none().then_some(config.forward_rays),
+            samples: samples_gain.is_none().then_some(base.camera_samples),
+            max_samples: MAX_CAMERA_SAMPLES.min(base.camera_samples * f as u32),
+            rays: rays_gain.is_none().then_some(base.forward_rays),
             rays_range: (
-                RAYS_RANGE.0.max(config.forward_rays / f),
-                RAYS_RANGE.1.min(config.forward_rays * f),
+                RAYS_RANGE.0.max(base.forward_rays / f),
+                RAYS_RANGE.1.min(base.forward_rays * f),
             ),
         };
         (config.camera_samples, config.forward_rays) = model::budgets(&noise, &costs, &search);
@@ -454,6 +517,19 @@ impl Tuner {
             costs.per_ray,
             costs.per_pair
         ));
+    }
+}
+
+/// Work of a pass that traced 1/k of the pixels, as the whole image would have cost: the
+/// counters that grow with the pixels traced (camera paths, their volumes, and the gather hits
+/// on them) times k; the forward rays are the pass's own.
+fn scaled(w: &Work, k: f64) -> Work {
+    let up = |n: u64| (n as f64 * k).round() as u64;
+    Work {
+        paths: up(w.paths),
+        volumes: up(w.volumes),
+        rays: w.rays,
+        hits: up(w.hits),
     }
 }
 

@@ -32,6 +32,7 @@ fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) 
         first_row: 0,
         budget_bytes: usize::MAX,
         light_layers: false,
+        stride: 1,
     };
     let (mut out, rows) = camera_pass(s, integrator, &job, &never).unwrap();
     assert_eq!(rows, s.camera.resolution().1);

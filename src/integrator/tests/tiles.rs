@@ -33,6 +33,7 @@ fn job(integrator: &Integrator, first_row: u32, budget_bytes: usize) -> CameraJo
         first_row,
         budget_bytes,
         light_layers: false,
+        stride: 1,
     }
 }
 
