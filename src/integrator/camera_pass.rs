@@ -164,7 +164,7 @@ fn trace_row(
     let w = scene.camera.resolution().0;
     let mut out = CameraOutput::new(scene.grid.n);
     let stride = job.stride.max(1);
-    if y % stride != 0 {
+    if !y.is_multiple_of(stride) {
         return Some(out);
     }
     let mut rng = rng::stream(job.seed, job.pass, Domain::Camera, y as u64);

@@ -1,0 +1,154 @@
+//! The tuner's choice from its measures: q per medium by the time-optimal rule (method note
+//! 7), then the budgets that minimise variance x cost per pass.
+
+use super::model::{self, BudgetSearch, CostSplit, NoiseSplit, QFit};
+use super::{
+    BUDGET_FACTOR, MAX_CAMERA_SAMPLES, Measure, PassConfig, Q_PILOT, RAYS_RANGE, Role, Tuner,
+    Z_SIGNIFICANT,
+};
+
+impl Tuner {
+    /// Sets the automatic media's q; returns the predicted variance and cost of a pass.
+    pub(super) fn choose_q(
+        &self,
+        config: &mut PassConfig,
+        b: Measure,
+        report: &mut Vec<String>,
+    ) -> (f64, f64) {
+        let q_lo = Q_PILOT as f64;
+        let (mut media, mut fits) = (Vec::new(), Vec::new());
+        for m in 0..config.q.len() {
+            let Some((_, v)) = self.measure(Role::Medium(m)) else {
+                continue;
+            };
+            let gain = b.gain_over(&v);
+            if gain <= 0.0 {
+                report.push(format!(
+                    "q[{m}] = 1: q = {q_lo} did not lower the variance by {Z_SIGNIFICANT} \
+                     standard errors ({:.4e} vs {:.4e} +- {:.1e})",
+                    v.variance,
+                    b.variance,
+                    b.se.hypot(v.se)
+                ));
+                continue;
+            }
+            let (c1, c_lo) = (b.work.cost(), v.work.cost());
+            fits.push(QFit::from_passes(
+                b.variance,
+                b.variance - gain,
+                c1,
+                c_lo,
+                q_lo,
+            ));
+            media.push(m);
+        }
+        let (mut variance, mut cost) = (b.variance, b.work.cost());
+        if fits.is_empty() {
+            return (variance, cost);
+        }
+        let q = model::q_joint(&fits, b.variance, b.work.cost());
+        let rest = b.variance - fits.iter().map(|f| f.slope).sum::<f64>();
+        for ((m, f), q) in media.iter().zip(&fits).zip(q) {
+            config.q[*m] = q;
+            variance += f.slope * (q as f64 - 1.0);
+            cost += f.sphere_cost * (1.0 / q as f64 - 1.0);
+            report.push(format!(
+                "q[{m}] = {q:.3}: variance per pass V(q) = {:.4e} q + rest (S = (1+eps)A - B), \
+                 sphere cost c1 = {:.4e} s/q",
+                f.slope, f.sphere_cost
+            ));
+        }
+        report.push(format!(
+            "q: variance not depending on q I = {rest:.4e}, base cost c0 = {:.4e} s",
+            b.work.cost() - fits.iter().map(|f| f.sphere_cost).sum::<f64>()
+        ));
+        (variance, cost)
+    }
+
+    /// The automatic budgets when neither budget pilot bought a measurable gain: the variance
+    /// is then ruled by rare bright samples (fog-room-laser: the laser's light gathered on
+    /// surfaces) that two passes cannot measure, and the cheapest passes win, the most of them
+    /// per second (fog-room-laser at 96 x 72: 10 000 forward rays and 1 camera path per pass,
+    /// 2.7x the efficiency of 50 000 and 1; docs/study.md). Keeping the base, as an earlier
+    /// version did, kept paying for rays that bought nothing.
+    pub(super) fn cheapest(&self, config: &mut PassConfig, report: &mut Vec<String>) {
+        let f = BUDGET_FACTOR * BUDGET_FACTOR;
+        if self.auto_samples {
+            config.camera_samples = 1;
+        }
+        if self.auto_rays {
+            config.forward_rays = RAYS_RANGE.0.max(self.base.forward_rays / f);
+        }
+        report.push(format!(
+            "budgets: the cheapest, camera paths {} and forward rays {}: more of either did \
+             not lower the variance by {Z_SIGNIFICANT} standard errors",
+            config.camera_samples, config.forward_rays
+        ));
+    }
+
+    /// Sets the automatic budgets for a pass whose variance is `scale` times the base pilot's
+    /// and whose cost is `cost`. The models are fitted at the pilots' budgets (`config`'s on
+    /// entry); the search's range and the budgets the pilots say nothing about are the scene's.
+    pub(super) fn choose_budgets(
+        &self,
+        config: &mut PassConfig,
+        b: Measure,
+        scale: f64,
+        cost: f64,
+        report: &mut Vec<String>,
+    ) {
+        let (s, n) = (config.camera_samples as f64, config.forward_rays as f64);
+        let k = BUDGET_FACTOR as f64;
+        // A budget whose pilot did not lower the variance significantly stays as it is: the
+        // pilots say nothing about it.
+        let gain = |role| {
+            self.measure(role)
+                .map(|(_, m)| b.gain_over(&m))
+                .filter(|g| *g > 0.0)
+        };
+        let (rays_gain, samples_gain) = (gain(Role::Rays), gain(Role::Samples));
+        let v = b.variance;
+        let split = match (rays_gain, samples_gain) {
+            (Some(gr), Some(gs)) => NoiseSplit::from_three(s, n, k, v, v - gr, v - gs),
+            (Some(gr), None) => NoiseSplit::from_forward_rays(s, n, v, k, v - gr),
+            (None, Some(gs)) => NoiseSplit::from_camera_samples(s, n, v, k, v - gs),
+            (None, None) => return self.cheapest(config, report),
+        };
+        let noise = split.scaled(scale);
+        // The base pass's cost parts, rescaled to the chosen q's cost.
+        let [paths, volumes, rays, hits] = b.work.parts();
+        let r = cost / b.work.cost().max(f64::MIN_POSITIVE);
+        let costs = CostSplit {
+            per_sample: (paths + volumes) * r / s,
+            per_ray: rays * r / n,
+            per_pair: hits * r / (s * n),
+        };
+        // The models are fitted near the pilots: search within a factor BUDGET_FACTOR^2 of
+        // the scene's budgets, not far beyond.
+        let f = BUDGET_FACTOR * BUDGET_FACTOR;
+        let base = &self.base;
+        let search = BudgetSearch {
+            samples: samples_gain.is_none().then_some(base.camera_samples),
+            max_samples: MAX_CAMERA_SAMPLES.min(base.camera_samples * f as u32),
+            rays: rays_gain.is_none().then_some(base.forward_rays),
+            rays_range: (
+                RAYS_RANGE.0.max(base.forward_rays / f),
+                RAYS_RANGE.1.min(base.forward_rays * f),
+            ),
+        };
+        (config.camera_samples, config.forward_rays) = model::budgets(&noise, &costs, &search);
+        report.push(format!(
+            "budgets: camera paths {} and forward rays {}: variance per pass = {:.4e}/paths + \
+             {:.4e}/rays + {:.4e}/(paths x rays), cost = {:.4e} paths + {:.4e} rays + {:.4e} \
+             paths x rays s",
+            config.camera_samples,
+            config.forward_rays,
+            noise.camera,
+            noise.forward,
+            noise.pair,
+            costs.per_sample,
+            costs.per_ray,
+            costs.per_pair
+        ));
+    }
+}
