@@ -155,7 +155,8 @@ fn all_volumes_match_analytic_single_scattering() {
             vec![format!("integrator.volume={volume}")],
         ));
     }
-    // The Sobol sampler's forward rays (stratified emission, first flight and scattering).
+    // The Sobol sampler: forward rays (stratified emission, first flight and scattering) and
+    // camera paths (stratified pixel positions and first segments).
     for q in ["1", "0.3"] {
         cases.push((
             format!("spheres q={q} sobol"),

@@ -176,12 +176,14 @@ fn trace_row(
         }
         let pixel = y * w + x;
         let mut nee = NeeSums::new(job.light_layers);
-        // Camera paths take independent numbers even with the Sobol sampler: stratifying a
-        // pixel's paths of a pass moved chromatic-fog's gathered medium by -8 % (4.5 standard
-        // errors, tests/engine_partition.rs) even with every sample exactly uniform (a
-        // Cranley-Patterson shift per pixel), so something combines a pixel's paths
-        // non-linearly; until that is found, only forward rays are stratified (rng module).
-        for _ in 0..integrator.camera_samples {
+        // With the Sobol sampler the pixel's camera paths of this pass are the points of its
+        // own sequence (rng module comment): their pixel positions and first numbers are
+        // stratified among themselves, scrambled apart from other pixels' and passes'.
+        let sequence = rng::sequence(job.seed, job.pass, Domain::Camera, pixel as u64);
+        for s in 0..integrator.camera_samples {
+            if integrator.settings.sampler.stratifies() {
+                rng.begin_sample(sequence, s as u64);
+            }
             let px = x as f32 + rng.random::<f32>();
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);

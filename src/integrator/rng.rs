@@ -1,15 +1,16 @@
 //! Random streams derived from (seed, pass, domain, index), never from thread identity, so a
 //! render is bit-identical whatever the thread count.
 //!
-//! A stream can also hand out the first numbers of each sample (a forward ray) from an
-//! Owen-scrambled Sobol sequence (Burley 2020, "Practical Hash-based Owen Scrambling",
+//! A stream can also hand out the first numbers of each sample (a forward ray, a camera path)
+//! from an Owen-scrambled Sobol sequence (Burley 2020, "Practical Hash-based Owen Scrambling",
 //! the `sobol_burley` crate): sample `i` of a pass takes point `i` of a sequence scrambled by a
 //! hash of (seed, pass, domain, block), its first [`QMC_DIMS`] numbers one dimension each, then
 //! the stream's own pseudo-random numbers. The points of one pass fill the unit cube evenly, so
 //! the pass's forward rays start from a stratified set of positions and directions and take
 //! stratified first flights and scatterings (the low-frequency noise of the photon estimate is
-//! what that removes). Camera paths do not use it (`camera_pass::trace_row` says why). Every point of an Owen-scrambled
-//! sequence is uniform in the cube, so each sample is distributed exactly as with independent
+//! what that removes). A pixel's camera paths of a pass are the points of the pixel's own
+//! sequence (`camera_pass::trace_row`): stratified pixel positions and first flights. Every
+//! point of an Owen-scrambled sequence is uniform in the cube, so each sample is distributed exactly as with independent
 //! numbers: the estimators stay unbiased. Passes use independent scrambles, so pass estimates
 //! stay independent (the film's noise estimate and the pilots' variances assume that) and the
 //! numbers of a pass depend only on (seed, pass, index): pass ranges and merges stay bit-exact.
@@ -19,7 +20,8 @@ use rand_pcg::Pcg64Mcg;
 
 /// Numbers of each sample drawn from the Sobol point; the rest are pseudo-random. Covers a
 /// forward ray's emission (light choice, position, direction: five) and, in a grey medium, its
-/// first free flight and scattering direction.
+/// first free flight and scattering direction; a camera path's pixel position and its first
+/// medium segment's numbers.
 pub const QMC_DIMS: u32 = 8;
 
 /// `sobol_burley`'s longest sequence: sample indices beyond it start a new, independently
