@@ -23,6 +23,21 @@ fn budget_tuner() -> Tuner {
     Tuner::new(&desc, 1, base, (64, 64)).expect("budgets are automatic")
 }
 
+/// A tuner with q alone automatic (50 000 forward rays and 1 camera path fixed).
+fn q_tuner() -> Tuner {
+    let desc = IntegratorDesc {
+        forward_rays: Setting::Value(50_000),
+        camera_samples: Setting::Value(1),
+        ..IntegratorDesc::default()
+    };
+    let base = PassConfig {
+        q: vec![1.0],
+        forward_rays: 50_000,
+        camera_samples: 1,
+    };
+    Tuner::new(&desc, 1, base, (64, 64)).expect("q is automatic")
+}
+
 /// Feeds every pilot pass: pixel values of mean 1 and variance `variance(config)` over the
 /// image (64 x 64 pixels), and work that grows with the configuration's rays and camera paths,
 /// counted, like the renderer's, on the pixels the pass traces (`pixel_stride`).
@@ -99,17 +114,7 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
             && first.contains("a render of N passes traces N + 6"),
         "{first}"
     );
-    let desc = IntegratorDesc {
-        forward_rays: Setting::Value(50_000),
-        camera_samples: Setting::Value(1),
-        ..IntegratorDesc::default()
-    };
-    let base = PassConfig {
-        q: vec![1.0],
-        forward_rays: 50_000,
-        camera_samples: 1,
-    };
-    let mut t = Tuner::new(&desc, 1, base, (64, 64)).expect("q is automatic");
+    let mut t = q_tuner();
     feed(&mut t, |_| 1.0);
     let first = &t.choice().expect("chosen").report[0];
     assert!(
@@ -159,17 +164,7 @@ fn pilots_outside_the_film_sample_a_lattice_with_fewer_rays() {
 /// With q alone automatic the pilots are film passes: every pixel, the scene's budgets.
 #[test]
 fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
-    let desc = IntegratorDesc {
-        forward_rays: Setting::Value(50_000),
-        camera_samples: Setting::Value(1),
-        ..IntegratorDesc::default()
-    };
-    let base = PassConfig {
-        q: vec![1.0],
-        forward_rays: 50_000,
-        camera_samples: 1,
-    };
-    let t = Tuner::new(&desc, 1, base, (64, 64)).expect("q is automatic");
+    let t = q_tuner();
     assert!(t.pilots_join_film());
     for pass in 0..t.pilot_passes() {
         assert_eq!(t.pixel_stride(pass), 1);
