@@ -179,10 +179,14 @@ fn trace_row(
         // With the Sobol sampler the pixel's camera paths of this pass are the points of its
         // own sequence (rng module comment): their pixel positions and first numbers are
         // stratified among themselves, scrambled apart from other pixels' and passes'.
-        let sequence = rng::sequence(job.seed, job.pass, Domain::Camera, pixel as u64);
+        let sequence = integrator
+            .settings
+            .sampler
+            .stratifies()
+            .then(|| rng::sequence(job.seed, job.pass, Domain::Camera, pixel as u64));
         for s in 0..integrator.camera_samples {
-            if integrator.settings.sampler.stratifies() {
-                rng.begin_sample(sequence, s as u64);
+            if let Some(key) = sequence {
+                rng.begin_sample(key, s as u64);
             }
             let px = x as f32 + rng.random::<f32>();
             let py = y as f32 + rng.random::<f32>();

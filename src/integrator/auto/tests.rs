@@ -9,33 +9,32 @@ use crate::integrator::setting::Setting;
 
 const PIXELS: usize = 4096;
 
-/// A tuner with automatic budgets only (q fixed at 1), from the default base.
-fn budget_tuner() -> Tuner {
-    let desc = IntegratorDesc {
-        q: Setting::Value(1.0),
-        ..IntegratorDesc::default()
-    };
+/// A tuner of `desc` for one medium and a 64 x 64 image, from the default base (q 1, 50 000
+/// forward rays, 1 camera path).
+fn tuner(desc: IntegratorDesc) -> Tuner {
     let base = PassConfig {
         q: vec![1.0],
         forward_rays: 50_000,
         camera_samples: 1,
     };
-    Tuner::new(&desc, 1, base, (64, 64)).expect("budgets are automatic")
+    Tuner::new(&desc, 1, base, (64, 64)).expect("something is automatic")
+}
+
+/// A tuner with automatic budgets only (q fixed at 1).
+fn budget_tuner() -> Tuner {
+    tuner(IntegratorDesc {
+        q: Setting::Value(1.0),
+        ..IntegratorDesc::default()
+    })
 }
 
 /// A tuner with q alone automatic (50 000 forward rays and 1 camera path fixed).
 fn q_tuner() -> Tuner {
-    let desc = IntegratorDesc {
+    tuner(IntegratorDesc {
         forward_rays: Setting::Value(50_000),
         camera_samples: Setting::Value(1),
         ..IntegratorDesc::default()
-    };
-    let base = PassConfig {
-        q: vec![1.0],
-        forward_rays: 50_000,
-        camera_samples: 1,
-    };
-    Tuner::new(&desc, 1, base, (64, 64)).expect("q is automatic")
+    })
 }
 
 /// Feeds every pilot pass: pixel values of mean 1 and variance `variance(config)` over the
