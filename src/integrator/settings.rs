@@ -62,6 +62,17 @@ impl Sampler {
     }
 }
 
+/// How next-event estimation picks a light for each sample (`integrator.light_pick`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LightPick {
+    /// In proportion to each light's estimated contribution at the receiver (`direct::pick`'s module comment).
+    #[default]
+    Local,
+    /// In proportion to each light's total power, the same everywhere.
+    Power,
+}
+
 /// How direct light (emitted, arriving through index-matched boundaries only) reaches the
 /// image (`integrator.direct`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -129,6 +140,8 @@ pub struct IntegratorDesc {
     /// Distance samples of next-event estimation per camera medium segment (and light samples
     /// per diffuse surface hit).
     pub nee_samples: u32,
+    /// How next-event estimation picks the light of each sample (`direct::pick`).
+    pub light_pick: LightPick,
     /// Paths traced from each illuminance sensor per pass (cosine-distributed directions;
     /// `integrator::sensors`).
     pub sensor_paths: u32,
@@ -160,6 +173,7 @@ impl Default for IntegratorDesc {
             mode: GatherMode::FirstExtinction,
             direct: DirectMode::Nee,
             nee_samples: 1,
+            light_pick: LightPick::Local,
             sensor_paths: DEFAULT_SENSOR_PATHS,
             channel_pick: ChannelPick::Throughput,
             channel_floor: 0.1,

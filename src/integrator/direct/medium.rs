@@ -14,9 +14,9 @@
 use glam::{Vec2, Vec3};
 use rand::Rng as _;
 
-use super::Direct;
 use super::sampling::{Equiangular, ExpMixture, cone_interval};
 use super::shadow::{optical_depth, visible};
+use super::{Direct, Receiver};
 use crate::geometry::Ray;
 use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
@@ -59,8 +59,9 @@ impl Direct {
         // bin stratum (i + shift) mod n for a random shift keeps each pair uniform on the
         // unit square (a Latin hypercube), so every sample stays unbiased.
         let shift = rng.random_range(0..self.samples);
+        let at = Receiver::along(seg.ray, seg.len);
         for i in 0..self.samples {
-            let (j, prob) = self.pick(rng.random());
+            let (j, prob) = self.pick_at(scene, &at, rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let u = (i as f32 + rng.random::<f32>()) * inv_samples;

@@ -9,11 +9,14 @@
 //! - `shadow.rs`: transmittance of shadow rays through null boundaries and media;
 //! - `medium.rs`: the single-scattering estimate of one camera segment;
 //! - `surface.rs`: the reflected estimate at a surface gather point;
+//! - `pick.rs`: which light each sample goes to (`integrator.light_pick`);
 //! - `sensor.rs`: the irradiance at an illuminance sensor.
 
 mod medium;
+mod pick;
 
 pub use medium::Segment;
+pub use pick::Receiver;
 pub mod sampling;
 mod sensor;
 pub(super) mod shadow;
@@ -24,7 +27,7 @@ pub use surface::Part;
 use crate::light::{DirectChoice, Light};
 use crate::world::Scene;
 
-use super::settings::{DirectMode, IntegratorDesc};
+use super::settings::{DirectMode, IntegratorDesc, LightPick};
 
 /// Spot lights narrower than this half-angle (degrees) keep their direct light with the
 /// forward rays under a light's `direct = "auto"`: a camera segment rarely meets so thin a
@@ -41,6 +44,9 @@ pub struct Direct {
     picks: Vec<(u32, f32)>,
     /// Per scene light: the probability of picking it (0 when not handled).
     prob: Vec<f32>,
+    /// Per scene light: what the local pick's estimate needs of it.
+    reach: Vec<pick::Reach>,
+    pick: LightPick,
     samples: u32,
 }
 
@@ -89,10 +95,16 @@ impl Direct {
             })
             .collect();
         let prob = weights.iter().map(|w| (w / total) as f32).collect();
+        let reach = lights
+            .iter()
+            .map(|l| pick::Reach::of(l, &scene.geometry, &scene.grid))
+            .collect();
         Some(Self {
             nee,
             picks,
             prob,
+            reach,
+            pick: desc.light_pick,
             samples: desc.nee_samples.max(1),
         })
     }
@@ -103,12 +115,12 @@ impl Direct {
         self.nee.get(i as usize).copied().unwrap_or(false)
     }
 
-    /// The probability of picking light `i` for a sample.
+    /// The probability of picking light `i` by power (`LightPick::Power`).
     fn probability(&self, i: u32) -> f32 {
         self.prob.get(i as usize).copied().unwrap_or(0.0)
     }
 
-    /// A handled light from a uniform `u`: (index, probability).
+    /// A handled light by power from a uniform `u`: (index, probability).
     fn pick(&self, u: f32) -> (u32, f32) {
         let k = self
             .picks

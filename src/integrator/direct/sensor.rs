@@ -10,9 +10,9 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 use rand::Rng as _;
 
-use super::Direct;
 use super::shadow::visible;
 use super::surface::{power, solid_angle_pdf};
+use super::{Direct, Receiver};
 use crate::geometry::spawn;
 use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
@@ -31,8 +31,9 @@ impl Direct {
         acc: &mut ByLight,
     ) {
         let inv_samples = 1.0 / self.samples as f32;
+        let at = Receiver::Point(x);
         for _ in 0..self.samples {
-            let (j, prob) = self.pick(rng.random());
+            let (j, prob) = self.pick_at(scene, &at, rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let Some(anchor) = light.nee_anchor(&scene.geometry, uv) else {

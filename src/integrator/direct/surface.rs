@@ -7,8 +7,8 @@
 use glam::{Vec2, Vec3};
 use rand::Rng as _;
 
-use super::Direct;
 use super::shadow::visible;
+use super::{Direct, Receiver};
 use crate::geometry::{Hit, Ray, spawn};
 use crate::integrator::by_light::ByLight;
 use crate::integrator::rng::Rng;
@@ -61,8 +61,9 @@ impl Direct {
     ) {
         let medium = scene.geometry.medium_after(hit, wo);
         let inv_samples = 1.0 / self.samples as f32;
+        let at = Receiver::Point(hit.p);
         for _ in 0..self.samples {
-            let (j, prob) = self.pick(rng.random());
+            let (j, prob) = self.pick_at(scene, &at, rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let Some(anchor) = light.nee_anchor(&scene.geometry, uv) else {
@@ -123,7 +124,8 @@ impl Direct {
             return 1.0;
         }
         let dist2 = hit.p.distance_squared(from);
-        let pdf_light = self.probability(light) * dist2 / (area * cos);
+        let pick = self.probability_at(scene, &Receiver::Point(from), light);
+        let pdf_light = pick * dist2 / (area * cos);
         power(pdf_bsdf, pdf_light)
     }
 }
