@@ -40,7 +40,8 @@ pub const NARROW_SPOT_DEGREES: f32 = 1.0;
 pub struct Direct {
     /// Per scene light: handled here.
     nee: Vec<bool>,
-    /// The handled lights, picked in proportion to their power: (light, cumulative probability).
+    /// The handled lights with the cumulative probability of picking them by power (the
+    /// `power` pick, and the fallback of the `local` one where its estimate is degenerate).
     picks: Vec<(u32, f32)>,
     /// Per scene light: the probability of picking it (0 when not handled).
     prob: Vec<f32>,
