@@ -4,6 +4,8 @@
 
 #[path = "reliability_cli/interrupts.rs"]
 mod interrupts;
+#[path = "reliability_cli/pipes.rs"]
+mod pipes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

@@ -124,10 +124,12 @@ pub fn write_outputs(
 
 /// What a finished film tells beside its images: the sensors' table (stdout), and a warning
 /// when light layers miss part of the image.
-pub fn report_extras(film: &Film, quiet: bool) {
+/// A failed write of the table (a closed pipe) is returned after the warnings.
+pub fn report_extras(film: &Film, quiet: bool) -> std::io::Result<()> {
     let readings = film.sensor_readings();
+    let mut printed = Ok(());
     if !readings.is_empty() && !quiet {
-        print!("{}", output::sensors::table(&readings));
+        printed = out!("{}", output::sensors::table(&readings));
     }
     for r in readings
         .iter()
@@ -148,6 +150,7 @@ pub fn report_extras(film: &Film, quiet: bool) {
             100.0 * (1.0 - f)
         );
     }
+    printed
 }
 
 /// Refuses a film of another render than `reference`, naming the files and what differs.

@@ -69,7 +69,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             film_files::list(&all)
         );
     }
-    film_files::report_extras(&film, args.quiet);
+    film_files::report_extras(&film, args.quiet)?;
     if film.first != 0 {
         eprintln!(
             "brume: warning: the merged passes start at {}, not 0: parts are missing",

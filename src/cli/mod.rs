@@ -1,5 +1,23 @@
 //! clap definitions of brume's subcommands and their dispatch.
 
+/// `print!` to standard output that returns the write's error instead of panicking: a reader
+/// that closes the pipe early (`brume info --json | head`) ends the command quietly
+/// (`main` treats a broken pipe as done), and a failed write is reported, not a panic.
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout().lock(), $($t)*)
+    }};
+}
+
+/// `println!` that returns the write's error (see `out!`).
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($t)*)
+    }};
+}
+
 mod command_line;
 mod film_files;
 mod info;

@@ -111,27 +111,27 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<ExitCode> {
             "luminance_cd_m2": to_cd.map(|k| m.mean * k),
             "luminance_std_error_cd_m2": to_cd.zip(m.std_error).map(|(k, e)| e * k),
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(ExitCode::SUCCESS);
     }
     let [x0, y0, x1, y1] = region;
-    println!("{}: {what}", args.image.display());
-    println!("pixels {x0}..{x1} x {y0}..{y1} ({} pixels)", m.pixels);
-    println!("mean        {:.6}", m.mean);
+    outln!("{}: {what}", args.image.display())?;
+    outln!("pixels {x0}..{x1} x {y0}..{y1} ({} pixels)", m.pixels)?;
+    outln!("mean        {:.6}", m.mean)?;
     match m.std_error {
-        Some(e) if m.pixels > 1 => println!(
+        Some(e) if m.pixels > 1 => outln!(
             "std error   {e:.6}  LOWER BOUND: the noise layer with the pixels taken as \
              independent, but the pixels of a pass share its forward rays, so the error of \
              their mean can be several times larger (8x measured); a luminance sensor on the \
              region ([[sensors]]) gives its exact error"
-        ),
-        Some(e) => println!("std error   {e:.6}  (from the noise layer)"),
+        )?,
+        Some(e) => outln!("std error   {e:.6}  (from the noise layer)")?,
         None => {
-            println!("std error   unknown: no noise layer (render with film.noise_layer = true)")
+            outln!("std error   unknown: no noise layer (render with film.noise_layer = true)")?
         }
     }
     if let Some(k) = to_cd.filter(|k| *k != 1.0) {
-        println!("luminance   {:.6} cd/m2", m.mean * k);
+        outln!("luminance   {:.6} cd/m2", m.mean * k)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -66,9 +66,9 @@ pub fn run(args: &SpectrumArgs) -> anyhow::Result<ExitCode> {
     if args.matrices {
         let m = describe::matrices();
         if args.json {
-            println!("{}", serde_json::to_string_pretty(&m)?);
+            outln!("{}", serde_json::to_string_pretty(&m)?)?;
         } else {
-            println!("{m:#}");
+            outln!("{m:#}")?;
         }
         return Ok(ExitCode::SUCCESS);
     }
@@ -91,14 +91,14 @@ pub fn run(args: &SpectrumArgs) -> anyhow::Result<ExitCode> {
         cat: args.cat.into(),
     };
     let colour = describe::spectrum_colour(&request)?;
-    println!(
+    outln!(
         "{}",
         if args.json {
             colour.to_json()
         } else {
             colour.to_text()
         }
-    );
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -177,7 +177,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     progress.finish();
     let summary = study::summarise(&cfg, &reference, &ref_name, &rows, &invalid);
     let plots = write_results(&args.dir, &variants, &rows, &summary)?;
-    print_summary(&summary, &args.dir, plots.len());
+    print_summary(&summary, &args.dir, plots.len())?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -314,12 +314,12 @@ fn cell(v: Option<f64>, width: usize) -> String {
     }
 }
 
-fn print_summary(s: &study::Summary, dir: &Path, plots: usize) {
+fn print_summary(s: &study::Summary, dir: &Path, plots: usize) -> std::io::Result<()> {
     let eff = match s.clock {
         study::Clock::Wall => "1/(MSE*t)",
         study::Clock::Cpu => "1/(MSE*cpu)",
     };
-    println!(
+    outln!(
         "{:<32} {:>6} {:>7} {:>7} {:>11} {:>11} {:>11} {:>11} {:>7} {:>11}{}",
         "variant",
         "passes",
@@ -332,7 +332,7 @@ fn print_summary(s: &study::Summary, dir: &Path, plots: usize) {
         "gain",
         "mean err",
         if s.fit_scale { "           k" } else { "" }
-    );
+    )?;
     for v in &s.variants {
         let k = match (&v.k, s.fit_scale) {
             (Some(k), true) => format!(" {:>11.5}", k.mean),
@@ -340,7 +340,7 @@ fn print_summary(s: &study::Summary, dir: &Path, plots: usize) {
             (_, false) => String::new(),
         };
         let over = if v.over_budget { "  OVER BUDGET" } else { "" };
-        println!(
+        outln!(
             "{:<32} {:>6.1} {:>7.2} {:>7.2} {:>11.4e} {} {} {:>11.4e} {:>7.3} {:>11.3e}{k}{over}",
             v.label,
             v.mean_passes,
@@ -352,21 +352,21 @@ fn print_summary(s: &study::Summary, dir: &Path, plots: usize) {
             v.efficiency,
             v.gain_vs_first,
             v.mean_error,
-        );
+        )?;
     }
     for b in &s.best_per_layer {
-        println!("{}", b.describe());
+        outln!("{}", b.describe())?;
     }
     let floor = s
         .reference_noise_mse
         .map_or("unknown".to_string(), |f| format!("{f:.4e}"));
-    println!("reference: {}; {}", s.reference, s.reference_values);
+    outln!("reference: {}; {}", s.reference, s.reference_values)?;
     for n in &s.notes {
-        println!("note: {n}");
+        outln!("note: {n}")?;
     }
-    println!(
+    outln!(
         "reference noise floor (mean squared standard error): {floor}; outputs in {} \
          (study.csv, summary.json, {plots} plot files)",
         dir.display()
-    );
+    )
 }

@@ -50,9 +50,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let (film, stopped, auto, over_budget) =
         pool.install(|| render(args, &loaded, &id, &plan, resumed, &interrupt))?;
     let interrupted = stopped && over_budget.is_none();
+    // Standard output may be a pipe its reader has closed: what is printed before the files
+    // are saved must not stop the saving, so its first error waits until they are.
+    let mut printed = Ok(());
     if let (Some(choice), true) = (&auto, args.verbose) {
         for line in &choice.report {
-            println!("auto: {line}");
+            printed = printed.and_then(|()| outln!("auto: {line}"));
         }
     }
     // An interrupt from now on lets the files being written finish; a second aborts.
@@ -61,17 +64,17 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let interrupted = interrupted || interrupt.interrupted();
     report(args, &film, &id, interrupted, start, &saved, &cmd);
     if film.passes > 0 && plan.range.is_none() {
-        film_files::report_extras(&film, args.quiet);
+        printed = printed.and(film_files::report_extras(&film, args.quiet));
     }
     // The passes before it are saved above; the render cannot go on within the budget.
     if let Some(e) = over_budget {
         anyhow::bail!(e);
     }
-    Ok(if interrupted {
-        ExitCode::from(interrupt::INTERRUPTED)
-    } else {
-        ExitCode::SUCCESS
-    })
+    if interrupted {
+        return Ok(ExitCode::from(interrupt::INTERRUPTED));
+    }
+    printed?;
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Command-line numbers the parser cannot bound.
@@ -185,9 +188,10 @@ fn render(
 }
 
 /// `--verbose`'s account of the work done and where the time went.
+/// Mid-render: a failed write (a closed pipe) is ignored, the render goes on.
 fn print_work(renderer: &Renderer) {
     let s = renderer.stats();
-    println!(
+    let _ = outln!(
         "work: {} camera paths, {} volume records, {} forward rays, {} gather hits; \
          seconds: camera {:.3}, build {:.3}, light {:.3}",
         s.camera_paths,
