@@ -59,9 +59,9 @@ impl Direct {
         // bin stratum (i + shift) mod n for a random shift keeps each pair uniform on the
         // unit square (a Latin hypercube), so every sample stays unbiased.
         let shift = rng.random_range(0..self.samples);
-        let at = Receiver::along(seg.ray, seg.len);
+        let at = self.picking(scene, Receiver::along(seg.ray, seg.len));
         for i in 0..self.samples {
-            let (j, prob) = self.pick_at(scene, &at, rng.random());
+            let (j, prob) = at.pick(rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let u = (i as f32 + rng.random::<f32>()) * inv_samples;

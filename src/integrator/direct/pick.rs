@@ -208,34 +208,58 @@ fn inverse_square_integral(o: Vec3, d: Vec3, (a, b): (f32, f32), c: Vec3, r2: f3
     (((b - t0) / h).atan() - ((a - t0) / h).atan()).max(0.0) / h
 }
 
-impl Direct {
-    /// A handled light for a sample received at `r` from a uniform `u`: (index, probability).
-    pub(crate) fn pick_at(&self, scene: &Scene, r: &Receiver, u: f32) -> (u32, f32) {
-        if self.picks.len() == 1 {
-            return (self.picks[0].0, 1.0);
+/// The picks of one receiver: the sum of the lights' estimates there, computed once for all
+/// of its samples.
+pub(crate) struct Picking<'a> {
+    direct: &'a Direct,
+    scene: &'a Scene,
+    r: Receiver,
+    /// The sum of the estimates; None where the power pick applies (the `power` rule, one
+    /// light, or a degenerate sum).
+    total: Option<f32>,
+}
+
+impl Picking<'_> {
+    /// A handled light from a uniform `u`: (index, probability).
+    pub(crate) fn pick(&self, u: f32) -> (u32, f32) {
+        let d = self.direct;
+        if d.picks.len() == 1 {
+            return (d.picks[0].0, 1.0);
         }
-        match self.pick {
-            LightPick::Power => self.pick(u),
-            LightPick::Local => {
-                let total = self.local_total(scene, r);
-                if !(total > 0.0 && total.is_finite()) {
-                    return self.pick(u);
-                }
-                let mut acc = 0.0;
-                let last = self.picks.len() - 1;
-                for (k, &(j, _)) in self.picks.iter().enumerate() {
-                    let p = self.local_probability(scene, r, j, total);
-                    acc += p;
-                    if u < acc || k == last {
-                        return (j, p);
-                    }
-                }
-                unreachable!("the loop returns at its last light")
+        let Some(total) = self.total else {
+            return d.pick(u);
+        };
+        let mut acc = 0.0;
+        let last = d.picks.len() - 1;
+        for (k, &(j, _)) in d.picks.iter().enumerate() {
+            let p = d.local_probability(self.scene, &self.r, j, total);
+            acc += p;
+            if u < acc || k == last {
+                return (j, p);
             }
+        }
+        unreachable!("the loop returns at its last light")
+    }
+}
+
+impl Direct {
+    /// The picks of samples received at `r`.
+    pub(crate) fn picking<'a>(&'a self, scene: &'a Scene, r: Receiver) -> Picking<'a> {
+        let total = match self.pick {
+            LightPick::Local if self.picks.len() > 1 => {
+                Some(self.local_total(scene, &r)).filter(|t| *t > 0.0 && t.is_finite())
+            }
+            LightPick::Local | LightPick::Power => None,
+        };
+        Picking {
+            direct: self,
+            scene,
+            r,
+            total,
         }
     }
 
-    /// The probability that [`Self::pick_at`] picks light `light` for a sample at `r`.
+    /// The probability that [`Picking::pick`] picks light `light` for a sample at `r`.
     pub(crate) fn probability_at(&self, scene: &Scene, r: &Receiver, light: u32) -> f32 {
         if !self.handles(light) {
             return 0.0;
@@ -373,7 +397,7 @@ power = 20.0
     }
 
     /// Pearson chi-square of 200 000 picks per receiver against `probability_at`, with the
-    /// probability `pick_at` returns equal to it (4 degrees of freedom: the 1e-4 level is 23.5).
+    /// probability `Picking::pick` returns equal to it (4 degrees of freedom: the 1e-4 level is 23.5).
     #[test]
     fn picks_follow_their_probabilities() {
         let (scene, direct) = setup();
@@ -384,8 +408,9 @@ power = 20.0
                 .map(|j| direct.probability_at(&scene, &r, j) as f64)
                 .collect();
             let mut count = [0u64; 5];
+            let picking = direct.picking(&scene, r);
             for _ in 0..n {
-                let (j, pj) = direct.pick_at(&scene, &r, rng.random());
+                let (j, pj) = picking.pick(rng.random());
                 assert!((pj as f64 - p[j as usize]).abs() < 1e-6);
                 count[j as usize] += 1;
             }

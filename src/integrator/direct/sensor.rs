@@ -31,9 +31,9 @@ impl Direct {
         acc: &mut ByLight,
     ) {
         let inv_samples = 1.0 / self.samples as f32;
-        let at = Receiver::Point(x);
+        let at = self.picking(scene, Receiver::Point(x));
         for _ in 0..self.samples {
-            let (j, prob) = self.pick_at(scene, &at, rng.random());
+            let (j, prob) = at.pick(rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let Some(anchor) = light.nee_anchor(&scene.geometry, uv) else {

@@ -61,9 +61,9 @@ impl Direct {
     ) {
         let medium = scene.geometry.medium_after(hit, wo);
         let inv_samples = 1.0 / self.samples as f32;
-        let at = Receiver::Point(hit.p);
+        let at = self.picking(scene, Receiver::Point(hit.p));
         for _ in 0..self.samples {
-            let (j, prob) = self.pick_at(scene, &at, rng.random());
+            let (j, prob) = at.pick(rng.random());
             let light = &scene.lights.lights()[j as usize];
             let uv = Vec2::new(rng.random(), rng.random());
             let Some(anchor) = light.nee_anchor(&scene.geometry, uv) else {
