@@ -240,6 +240,21 @@ impl Picking<'_> {
         }
         unreachable!("the loop returns at its last light")
     }
+
+    /// The probability that [`Self::pick`] picks light `light`.
+    pub(crate) fn probability(&self, light: u32) -> f32 {
+        let d = self.direct;
+        if !d.handles(light) {
+            return 0.0;
+        }
+        if d.picks.len() == 1 {
+            return 1.0;
+        }
+        match self.total {
+            Some(total) => d.local_probability(self.scene, &self.r, light, total),
+            None => d.probability(light),
+        }
+    }
 }
 
 impl Direct {
@@ -261,22 +276,7 @@ impl Direct {
 
     /// The probability that [`Picking::pick`] picks light `light` for a sample at `r`.
     pub(crate) fn probability_at(&self, scene: &Scene, r: &Receiver, light: u32) -> f32 {
-        if !self.handles(light) {
-            return 0.0;
-        }
-        if self.picks.len() == 1 {
-            return 1.0;
-        }
-        match self.pick {
-            LightPick::Power => self.probability(light),
-            LightPick::Local => {
-                let total = self.local_total(scene, r);
-                if !(total > 0.0 && total.is_finite()) {
-                    return self.probability(light);
-                }
-                self.local_probability(scene, r, light, total)
-            }
-        }
+        self.picking(scene, *r).probability(light)
     }
 
     /// The sum of the handled lights' estimates at `r`.
