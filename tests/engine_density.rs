@@ -227,12 +227,29 @@ fn check(field: Field, density: &str, cases: &[(&str, &[&str], f64)]) {
     }
 }
 
-/// Gathered spheres keep the engine_media test's 1 % kernel allowance (the blur of radius R
-/// and spheres cut at the cube's faces); NEE has none.
-const CASES: [(&str, &[&str], f64); 4] = [
+/// Gathered spheres and cylinders keep the engine_media test's 1 % kernel allowance (the blur
+/// of radius R and volumes cut at the cube's faces); NEE has none. The cylinders integrate
+/// the camera's transmittance through the density in closed form (eq. 2, truncated) or by
+/// quadrature (eq. 3 long); `estimator::dense`.
+const CASES: [(&str, &[&str], f64); 7] = [
     ("spheres q=1", &["integrator.q=1"], 0.01),
     ("spheres q=0.3", &["integrator.q=0.3"], 0.01),
     ("spheres q=0.1", &["integrator.q=0.1"], 0.01),
+    (
+        "cylinder (eq. 2)",
+        &["integrator.volume=\"cylinder\""],
+        0.01,
+    ),
+    (
+        "cylinder-truncated",
+        &["integrator.volume=\"cylinder-truncated\""],
+        0.01,
+    ),
+    (
+        "cylinder-long (eq. 3)",
+        &["integrator.volume=\"cylinder-long\""],
+        0.01,
+    ),
     ("nee", &["integrator.direct=nee"], 0.0),
 ];
 
@@ -250,6 +267,38 @@ fn fog_bank_matches_single_scattering() {
 fn grid_matches_single_scattering() {
     let dir = tempfile::tempdir().unwrap();
     check(Field::Grid, &grid_density(dir.path()), &CASES);
+}
+
+/// The cylinders in a grey medium (sigma_s = 1.5 /m in every bin), where forward flights are
+/// grey and the gather takes the closed forms (eq. 2: `e^{-st D(tau_a)}` and the chord's
+/// optical length; truncated: the optical length alone) instead of quadrature, in height fog
+/// and in the grid.
+#[test]
+fn grey_cylinders_match_single_scattering() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str); 3] = [
+        ("grey cylinder (eq. 2)", "integrator.volume=\"cylinder\""),
+        (
+            "grey cylinder-truncated",
+            "integrator.volume=\"cylinder-truncated\"",
+        ),
+        (
+            "grey cylinder-long (eq. 3)",
+            "integrator.volume=\"cylinder-long\"",
+        ),
+    ];
+    for (field, density) in [
+        (Field::Height, HEIGHT.to_string()),
+        (Field::Grid, grid_density(dir.path())),
+    ] {
+        let expected = single_scattering_of(field, &[1.5; BINS]);
+        for (name, set) in cases {
+            let sets = [set, "media.fog.sigma_s=1.5"];
+            let s = scene(&fog_text(&density), &sets);
+            let (mean, se) = independent_estimates(&s, 5, 2, (0, 8, 0, 8));
+            assert_bins(name, &mean, &se, &expected, Z, 0.01);
+        }
+    }
 }
 
 /// Null-collision transport (`tracking = "delta"`, majorant blocks, and `"delta-global"`) in
@@ -325,19 +374,25 @@ fn tracking_is_refused_where_it_does_not_apply() {
     }
 }
 
-/// A density field with cylinders is refused before rendering, naming the keys.
+/// Cylinders in a tracked medium are refused before rendering, naming the keys: their
+/// weights need the optical depth at every point of the axis.
 #[test]
-fn cylinders_are_refused_with_a_density() {
-    let sets = vec!["integrator.volume=cylinder".to_string()];
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
-    let loaded = brume::scene::load_str(&fog_text(HEIGHT), &dir, &sets);
+fn cylinders_are_refused_with_tracking() {
+    let dir = tempfile::tempdir().unwrap();
+    let sets = vec![
+        "integrator.volume=\"cylinder\"".to_string(),
+        "media.fog.tracking=\"delta\"".to_string(),
+        "media.fog.sigma_s=1.5".to_string(),
+    ];
+    let scene_dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test.toml");
+    let loaded = brume::scene::load_str(&fog_text(&grid_density(dir.path())), &scene_dir, &sets);
     let err = match loaded {
         Ok(l) => brume::scene::build(&l).err().map(|e| e.to_string()),
         Err(e) => Some(e.to_string()),
     }
     .expect("refused");
     assert!(
-        err.contains("integrator.volume") && err.contains("media.fog.density"),
+        err.contains("integrator.volume") && err.contains("media.fog.tracking"),
         "{err}"
     );
 }

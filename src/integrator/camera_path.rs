@@ -153,6 +153,7 @@ impl<'a> CameraPath<'a> {
             mix,
             track,
             len: depth,
+            along,
             first_extinction: self.first_extinction(),
         };
         let (out, pixel, w, n) = (&mut *self.out, self.pixel, &self.w, self.n);
@@ -170,7 +171,8 @@ impl<'a> CameraPath<'a> {
                 });
                 out.segments.len() as u32 - 1
             });
-            let s = along.distance(s).min(len);
+            // Spheres come at their optical depth, cylinder pieces at their distances.
+            let s = if E::PIECES { s } else { along.distance(s) }.min(len);
             out.volumes.push(VolumeRecord { segment, s, scale });
         })
         .at_distance(along, len)

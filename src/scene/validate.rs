@@ -142,16 +142,21 @@ fn media(c: &mut Checker, d: &SceneDesc) {
             };
             c.fail(at, message);
         }
-        if m.density.is_some() && d.integrator.volume != VolumeKind::Spheres {
+        let tracked = matches!(
+            m.tracking,
+            Some(crate::medium::Tracking::Delta | crate::medium::Tracking::DeltaGlobal)
+        );
+        if m.density.is_some() && tracked && d.integrator.volume != VolumeKind::Spheres {
             // The cylinders' gather weights integrate the camera's transmittance along the
-            // axis in closed form for a uniform medium only; spheres, NEE and forward rays
-            // use the density's change of variable (medium::density).
+            // axis, which needs the optical depth at every point of it: the exact transport
+            // has it, null-collision tracking only estimates it at the points it visits.
             c.fail(
                 "integrator.volume",
                 format!(
-                    "{key}.density: a medium with a density field renders with \
-                     `volume = \"spheres\"` only (cylinders in non-uniform media are not \
-                     implemented yet; docs/media.md)"
+                    "{key}.tracking: cylinders integrate the camera's transmittance along their \
+                     axis, which needs the optical depth at every point of it; delta tracking \
+                     only estimates it at the points it visits. Use `volume = \"spheres\"` or \
+                     `tracking = \"exact\"` (docs/media.md)"
                 ),
             );
         }

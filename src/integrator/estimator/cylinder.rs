@@ -2,13 +2,16 @@
 //! over its whole medium segment and, in `first-extinction` mode, passes through it with the
 //! deterministic transmittance `e^{-st_l T}` instead of sampling an extinction. A forward segment
 //! whose chord crosses it adds `ss_l f Phi_l / (pi R^2) * ∫_chord e^{-st_l tau(lam)} dlam`. Also
-//! the cylinder geometry that truncated and long cylinders share.
+//! the camera side and piece boxes that truncated and long cylinders share (their geometry is
+//! `chord.rs`).
 
-use glam::Vec3;
 use obvhs::aabb::Aabb;
 use rand::Rng;
 use std::f32::consts::PI;
 
+use super::chord::{CameraAxis, CylinderChord, segment_cylinder};
+use super::dense::cylinder_eq2_density;
+use super::quadrature::phi1;
 use super::{
     CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds, chord_integral, panels_for,
     times_phase,
@@ -23,6 +26,7 @@ pub struct Cylinder;
 
 impl VolumeEstimator for Cylinder {
     const WHOLE_FORWARD_SEGMENT: bool = false;
+    const PIECES: bool = true;
 
     #[inline]
     fn camera_segment<R: Rng + ?Sized>(
@@ -51,6 +55,10 @@ impl VolumeEstimator for Cylinder {
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
         let k = match f.flight {
+            _ if !med.density.is_uniform() => {
+                let fwd = f.flight.map(|fl| (fl.mixture(), f.along));
+                cylinder_eq2_density(med, seg, &chord, fwd, radius)
+            }
             Some(fl) => cylinder_eq2_fwd(med, fl.mixture(), &chord, radius),
             None => cylinder_eq2(med, &chord, radius),
         };
@@ -81,14 +89,22 @@ pub(super) fn whole_segment<R: Rng + ?Sized>(
 /// Most pieces one cylinder is cut into (a bound for absurd radii; see `leave_pieces`).
 const MAX_PIECES: usize = 4096;
 
-/// Leaves the cylinder over `[0, len]` of a camera segment as pieces `(end, start)` short
-/// enough that their bounding boxes stay tight: a long cylinder at an angle to the axes has a
-/// box far larger than itself, which every forward ray nearby must then be tested against (in
-/// the fog room, eq. 2 cylinders took minutes per pass). A piece's box grows by `|u_mid| L`
-/// across its axis (`u_mid` the middle one of the direction's components): pieces of
-/// `L = 4 R / |u_mid|` keep that growth within 4 radii. Axis-aligned cylinders stay whole. The
-/// pieces partition the cylinder, so their contributions add up exactly to its own.
+/// Leaves the cylinder over `[0, len]` of a camera segment (`len` in the segment's optical
+/// depth at density 1, `CameraSegment::len`) as pieces `(end, start)`, distances along the
+/// segment, short enough that their bounding boxes stay tight: a long cylinder at an angle to
+/// the axes has a box far larger than itself, which every forward ray nearby must then be
+/// tested against (in the fog room, eq. 2 cylinders took minutes per pass). A piece's box grows
+/// by `|u_mid| L` across its axis (`u_mid` the middle one of the direction's components): pieces
+/// of `L = 4 R / |u_mid|` keep that growth within 4 radii. Axis-aligned cylinders stay whole.
+/// The pieces partition the cylinder, so their contributions add up exactly to its own. In a
+/// density field the pieces are cut in distance (the box is geometry), through the segment's
+/// change of variable.
 pub(super) fn leave_pieces(cam: &CameraSegment, len: f32, mut leave: impl FnMut(f32, f32)) {
+    let len = if cam.along.is_identity() {
+        len
+    } else {
+        cam.along.distance(len)
+    };
     let mut c = cam.dir.abs().to_array();
     c.sort_by(f32::total_cmp);
     let n = if cam.radius > 0.0 && len.is_finite() {
@@ -111,136 +127,6 @@ pub(super) fn leave_pieces(cam: &CameraSegment, len: f32, mut leave: impl FnMut(
 #[inline]
 pub(super) fn piece_bounds(seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb {
     capsule_bounds(seg.at(v.scale), seg.at(v.s), radius)
-}
-
-/// The axis of an integration cylinder (or a piece of one): a camera segment in a medium.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CameraAxis {
-    /// Where the camera segment starts (tau = 0).
-    pub origin: Vec3,
-    /// Unit direction `u` (camera -> scene).
-    pub dir: Vec3,
-    /// Axial range `[start, len]` of the cylinder (finite; `start = 0` for a whole one).
-    pub start: f32,
-    pub len: f32,
-}
-
-impl CameraAxis {
-    /// The axis of the cylinder piece `v` of camera segment `seg`: `[v.scale, v.s]` along it.
-    #[inline]
-    pub fn of(seg: &SegmentRecord, v: &VolumeRecord) -> Self {
-        Self {
-            origin: seg.origin,
-            dir: seg.dir,
-            start: v.scale,
-            len: v.s,
-        }
-    }
-}
-
-/// The part of a forward segment inside a finite, flat-capped cylinder.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CylinderChord {
-    /// Entry and exit distances along the forward segment (`lam1 <= lam2`).
-    pub lam1: f32,
-    pub lam2: f32,
-    /// Axial positions (along the camera axis) of the entry and exit points; `tau2 < tau1` when
-    /// the forward ray moves towards the camera.
-    pub tau1: f32,
-    pub tau2: f32,
-    /// Signed `u . v`.
-    pub uv: f32,
-}
-
-impl CylinderChord {
-    /// Chord length `lam2 - lam1`.
-    pub fn len(&self) -> f32 {
-        self.lam2 - self.lam1
-    }
-
-    /// True for a zero-length chord.
-    pub fn is_empty(&self) -> bool {
-        self.lam2 <= self.lam1
-    }
-
-    /// `mu = |u . v|`.
-    pub fn mu(&self) -> f32 {
-        self.uv.abs()
-    }
-
-    /// The smaller axial position (the chord's point nearest the camera).
-    pub fn tau_min(&self) -> f32 {
-        self.tau1.min(self.tau2)
-    }
-}
-
-/// Below this squared sine the forward ray is treated as parallel to the axis.
-const PARALLEL_EPS: f32 = 1e-12;
-
-/// Intersects the forward segment `o + v lam`, `lam in [0, len]` (`v` unit) with the cylinder of
-/// radius `r` around `axis` (axial range `[axis.start, axis.len]`). `None` when they do not
-/// overlap.
-#[inline]
-pub fn segment_cylinder(
-    axis: &CameraAxis,
-    r: f32,
-    o: Vec3,
-    v: Vec3,
-    len: f32,
-) -> Option<CylinderChord> {
-    let u = axis.dir;
-    let d = o - axis.origin;
-    let a0 = d.dot(u);
-    let uv = v.dot(u);
-    let w0 = d - u * a0;
-    let wv = v - u * uv;
-    let a = wv.length_squared();
-    let b = w0.dot(wv);
-    let c = w0.length_squared() - r * r;
-    let mut lo = 0.0f32;
-    let mut hi = len;
-    if a > PARALLEL_EPS {
-        let disc = b * b - a * c;
-        if disc.is_nan() || disc <= 0.0 {
-            return None;
-        }
-        // Cancellation-free roots of a lam² + 2 b lam + c.
-        let qq = -(b + disc.sqrt().copysign(b));
-        let (r1, r2) = (qq / a, c / qq);
-        lo = lo.max(r1.min(r2));
-        hi = hi.min(r1.max(r2));
-    } else if c > 0.0 {
-        return None;
-    }
-    if uv != 0.0 {
-        let inv = 1.0 / uv;
-        let l1 = (axis.start - a0) * inv;
-        let l2 = (axis.len - a0) * inv;
-        lo = lo.max(l1.min(l2));
-        hi = hi.min(l1.max(l2));
-    } else if a0 < axis.start || a0 > axis.len {
-        return None;
-    }
-    if lo.is_nan() || hi.is_nan() || lo >= hi {
-        return None;
-    }
-    Some(CylinderChord {
-        lam1: lo,
-        lam2: hi,
-        tau1: (a0 + uv * lo).clamp(axis.start, axis.len),
-        tau2: (a0 + uv * hi).clamp(axis.start, axis.len),
-        uv,
-    })
-}
-
-/// `(1 - e^{-x}) / x`, accurate for all x >= 0 (and small negative x), 1 at x = 0.
-#[inline]
-pub(crate) fn phi1(x: f32) -> f32 {
-    if x.abs() < 1e-4 {
-        1.0 - 0.5 * x
-    } else {
-        -(-x).exp_m1() / x
-    }
 }
 
 /// `∫_chord e^{-st tau(lam)} dlam` = `(e^{-st tau1} - e^{-st tau2}) / (st mu)`, evaluated as
@@ -291,4 +177,65 @@ pub fn cylinder_eq2_fwd(medium: &Medium, fwd: &Mixture, chord: &CylinderChord, r
         cw
     });
     medium.sigma_s * integral * k
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::medium::density::Height;
+    use crate::medium::{ChannelPick, Density};
+    use glam::Vec3;
+
+    const R: f32 = 0.05;
+
+    /// Height fog whose `up` is tilted from the segment, so that depth and distance differ.
+    fn fog() -> Medium {
+        let n = 2;
+        Medium::new(&Spectrum::splat(0.8, n), &Spectrum::splat(0.2, n), 0.0, n)
+            .unwrap()
+            .with_density(Density::Height(Height::new(
+                0.0,
+                0.7,
+                Vec3::new(0.0, 0.6, 0.8),
+            )))
+    }
+
+    /// In a density field the pieces are cut in distance: they tile `[0, distance(len)]`, and
+    /// none is longer than the uniform rule allows.
+    #[test]
+    fn pieces_tile_the_segment_in_distance() {
+        let med = fog();
+        let (origin, dir) = (
+            Vec3::new(0.1, -0.3, 0.2),
+            Vec3::new(0.2, 0.3, 1.0).normalize(),
+        );
+        let along = med.density.along(origin, dir);
+        let mix = Mixture::new(ChannelPick::Uniform, &Spectrum::splat(1.0, 2), &med, 0.1);
+        let len = 2.5f32;
+        let cam = CameraSegment {
+            medium: &med,
+            medium_id: 0,
+            dir,
+            radius: R,
+            mix: &mix,
+            track: None,
+            len: along.depth(len),
+            along: &along,
+            first_extinction: true,
+        };
+        let mut pieces = Vec::new();
+        leave_pieces(&cam, cam.len, |end, start| pieces.push((start, end)));
+        let mut c = dir.abs().to_array();
+        c.sort_by(f32::total_cmp);
+        let longest = 4.0 * R / c[1];
+        assert!(pieces.len() > 1);
+        assert_eq!(pieces[0].0, 0.0);
+        assert!((pieces.last().unwrap().1 - len).abs() < 1e-4 * len);
+        for w in pieces.windows(2) {
+            assert_eq!(w[0].1, w[1].0);
+        }
+        for (a, b) in pieces {
+            assert!(b > a && b - a <= longest * 1.0001, "{a}..{b}");
+        }
+    }
 }

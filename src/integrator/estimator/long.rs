@@ -9,7 +9,9 @@ use obvhs::aabb::Aabb;
 use rand::Rng;
 use std::f32::consts::PI;
 
-use super::cylinder::{phi1, piece_bounds, whole_segment};
+use super::cylinder::{piece_bounds, whole_segment};
+use super::dense::long_eq3_density;
+use super::quadrature::phi1;
 use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, segment_cylinder,
     times_phase,
@@ -24,6 +26,7 @@ pub struct LongCylinder;
 
 impl VolumeEstimator for LongCylinder {
     const WHOLE_FORWARD_SEGMENT: bool = true;
+    const PIECES: bool = true;
 
     #[inline]
     fn camera_segment<R: Rng + ?Sized>(
@@ -51,7 +54,11 @@ impl VolumeEstimator for LongCylinder {
         radius: f32,
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
-        let k = long_eq3_exact(med, &chord, radius);
+        let k = if med.density.is_uniform() {
+            long_eq3_exact(med, &chord, radius)
+        } else {
+            long_eq3_density(med, seg, &chord, f.along, radius)
+        };
         Some(times_phase(*f.flux * k, med, -f.d.dot(seg.dir)))
     }
 }

@@ -2,10 +2,12 @@
 //!
 //! - `spheres.rs`: stochastic spheres along the camera segment, control parameter q (q = 1 is
 //!   the single sphere at the extinction);
+//! - `chord.rs`: the geometry the cylinders share (axis, chord of a forward segment);
 //! - `cylinder.rs`: the cylinder over the whole segment with deterministic transmittance
-//!   (paper eq. 2), and the cylinder geometry the other cylinders share;
+//!   (paper eq. 2), and the camera side the other cylinders share;
 //! - `truncated.rs`: the cylinder ending at the sampled extinction (note 5b);
-//! - `long.rs`: paper eq. 3 in exact form (deterministic attenuation along forward segments).
+//! - `long.rs`: paper eq. 3 in exact form (deterministic attenuation along forward segments);
+//! - `dense.rs`: the three cylinders' gather weights in a medium with a density field.
 //!
 //! Each provides the three pieces of [`VolumeEstimator`]: what the camera side leaves on a medium
 //! segment, the bounds the gather structure indexes, and what one forward segment contributes
@@ -18,7 +20,9 @@
 //! `v` towards the camera). The weight functions exclude the phase function, the forward flux
 //! and the camera throughput unless they say otherwise.
 
+mod chord;
 mod cylinder;
+mod dense;
 mod long;
 mod quadrature;
 mod spheres;
@@ -33,10 +37,9 @@ use super::settings::{IntegratorDesc, VolumeKind};
 use crate::medium::{Along, ForwardFlight, Medium, MediumError, Mixture, Tracker, WalkEnd};
 use crate::spectrum::Spectrum;
 
-pub use cylinder::{
-    CameraAxis, Cylinder, CylinderChord, cylinder_eq2, cylinder_eq2_fwd, eq2_factor,
-    segment_cylinder,
-};
+pub use chord::{CameraAxis, CylinderChord, segment_cylinder};
+pub use cylinder::{Cylinder, cylinder_eq2, cylinder_eq2_fwd, eq2_factor};
+pub use dense::{cylinder_eq2_density, cylinder_truncated_density, long_eq3_density};
 pub use long::{LongCylinder, long_eq3_exact};
 pub use quadrature::{GL4_NODES, GL4_WEIGHTS, chord_integral, panels_for};
 pub use spheres::{
@@ -61,6 +64,9 @@ pub struct CameraSegment<'a> {
     /// Length to the surface or boundary ahead (may be `+inf`): in optical depth at density 1
     /// (the distance in a uniform medium), or the distance itself when `track` is Some.
     pub len: f32,
+    /// The segment's change of variable `s -> u` (the identity in a uniform or tracked
+    /// medium): cylinders cut their pieces in distance through it.
+    pub along: &'a Along,
     /// The camera path ends at its first real extinction (`first-extinction` mode) rather than
     /// scattering on through the medium (`see-through`).
     pub first_extinction: bool,
@@ -98,8 +104,13 @@ pub trait VolumeEstimator {
     /// attenuation itself.
     const WHOLE_FORWARD_SEGMENT: bool;
 
-    /// Leaves the volumes of one camera segment through `leave(s, scale)` (a distance along the
-    /// segment and a scalar weight the record keeps) and says how the path goes on.
+    /// The volumes are cylinder pieces: `leave(end, start)` gets both ends as distances along
+    /// the segment. Otherwise (spheres) `leave(s, scale)` gets the sphere's optical depth at
+    /// density 1 (`CameraSegment::len`'s unit), which the camera pass maps to its distance.
+    const PIECES: bool;
+
+    /// Leaves the volumes of one camera segment through `leave(s, scale)` (see `PIECES`: a
+    /// position along the segment and a scalar the record keeps) and says how the path goes on.
     fn camera_segment<R: Rng + ?Sized>(
         &self,
         cam: &CameraSegment,

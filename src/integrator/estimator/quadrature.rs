@@ -37,3 +37,13 @@ pub fn chord_integral(c: f32, panels: usize, mut f: impl FnMut(f32) -> Spectrum)
     }
     acc
 }
+
+/// `(1 - e^{-x}) / x`, accurate for all x >= 0 (and small negative x), 1 at x = 0.
+#[inline]
+pub(crate) fn phi1(x: f32) -> f32 {
+    if x.abs() < 1e-4 {
+        1.0 - 0.5 * x
+    } else {
+        -(-x).exp_m1() / x
+    }
+}

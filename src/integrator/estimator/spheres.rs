@@ -47,6 +47,7 @@ impl Spheres {
 
 impl VolumeEstimator for Spheres {
     const WHOLE_FORWARD_SEGMENT: bool = false;
+    const PIECES: bool = false;
 
     #[inline]
     fn camera_segment<R: Rng + ?Sized>(

@@ -9,6 +9,7 @@ use rand::Rng;
 use std::f32::consts::PI;
 
 use super::cylinder::{leave_pieces, piece_bounds};
+use super::dense::cylinder_truncated_density;
 use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, chord_integral,
     panels_for, segment_cylinder, times_phase,
@@ -33,6 +34,7 @@ impl TruncatedCylinder {
 
 impl VolumeEstimator for TruncatedCylinder {
     const WHOLE_FORWARD_SEGMENT: bool = false;
+    const PIECES: bool = true;
 
     #[inline]
     fn camera_segment<R: Rng + ?Sized>(
@@ -67,8 +69,13 @@ impl VolumeEstimator for TruncatedCylinder {
     ) -> Option<Spectrum> {
         let chord = segment_cylinder(&CameraAxis::of(seg, v), radius, f.o, f.d, f.len)?;
         let cam = self.channels.mixture(&Spectrum::from_slice(w), med);
-        let fwd = f.flight.map(|fl| fl.mixture());
-        let k = cylinder_truncated(med, &cam, fwd, &chord, radius);
+        let k = if med.density.is_uniform() {
+            let fwd = f.flight.map(|fl| fl.mixture());
+            cylinder_truncated(med, &cam, fwd, &chord, radius)
+        } else {
+            let fwd = f.flight.map(|fl| (fl.mixture(), f.along));
+            cylinder_truncated_density(med, seg, &cam, fwd, &chord, radius)
+        };
         Some(times_phase(*f.flux * k, med, -f.d.dot(seg.dir)))
     }
 }
