@@ -1,4 +1,4 @@
-//! Every scene in scenes/ loads, validates, builds and renders at a tiny size with finite pixels.
+//! Every scene in scenes/ (and tools/bench/) loads, validates, builds and renders at a tiny size with finite pixels.
 
 use brume::integrator::{Budget, Renderer};
 
@@ -10,6 +10,14 @@ fn every_scene_builds_and_renders_tiny() {
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
+    // The benchmark scenes of tools/bench too (docs/performance.md runs them).
+    let bench = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/bench");
+    files.extend(
+        std::fs::read_dir(&bench)
+            .expect("tools/bench exists")
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == "toml")),
+    );
     files.sort();
     // The scenes issue 7 asks for must all be there.
     for want in [

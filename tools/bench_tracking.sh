@@ -4,6 +4,8 @@
 # delta tracking against the global maximum, at several density multipliers; RUNS runs each,
 # median wall and CPU seconds of the whole process, and the camera and light passes' seconds
 # (--verbose). Usage: tools/bench_tracking.sh [RUNS] [PASSES] (defaults 5 and 2).
+# Another scene: SCENE=tools/bench/ground-fog.toml MEDIUM=fog MULTS=1 tools/bench_tracking.sh 5 4
+# (the thin layer; MULTS=1 leaves the density as the scene has it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
@@ -12,13 +14,17 @@ bin=target/release/brume
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 printf "%-5s %-13s %9s %9s %9s %9s\n" mult tracking wall_s cpu_s camera_s light_s
-for mult in 1 10 30 100; do
+scene=${SCENE:-scenes/smoke-plume.toml}
+medium=${MEDIUM:-smoke}
+for mult in ${MULTS:-1 10 30 100}; do
+  scale=()
+  if [ "$mult" != 1 ]; then scale=(--set "media.$medium.density.multiplier=$mult"); fi
   for t in exact delta delta-global; do
     rows=()
     for r in $(seq "$runs"); do
       log="$out/log"
-      /usr/bin/time -f "TIME %e %U %S" "$bin" render scenes/smoke-plume.toml --passes "$passes" \
-        --seed "$r" --set "media.smoke.tracking=\"$t\"" --set "media.smoke.density.multiplier=$mult" \
+      /usr/bin/time -f "TIME %e %U %S" "$bin" render "$scene" --passes "$passes" \
+        --seed "$r" --set "media.$medium.tracking=\"$t\"" "${scale[@]}" \
         -o "$out/x.exr" --verbose >"$log" 2>&1
       w=$(awk '/^TIME/{print $2}' "$log"); c=$(awk '/^TIME/{print $3+$4}' "$log")
       cam=$(sed -n 's/.*seconds: camera \([0-9.]*\),.*/\1/p' "$log" | tail -1)
