@@ -62,6 +62,29 @@ impl<'a> AxisDepth<'a> {
     fn rho(&self, tau: f32) -> f32 {
         self.density.at(self.p0 + self.dir * (tau - self.tau0))
     }
+
+    /// For many depths along the chord (quadrature nodes): the change of variable from `tau0`,
+    /// built once (a grid ray's pieces), instead of a walk through the grid per node.
+    fn nodes(&self) -> AxisNodes {
+        AxisNodes {
+            along: self.density.along(self.p0, self.dir),
+            tau0: self.tau0,
+            d0: self.d0,
+        }
+    }
+}
+
+/// [`AxisDepth::nodes`]: `D(tau)` for `tau >= tau0` through one change of variable.
+struct AxisNodes {
+    along: Along,
+    tau0: f32,
+    d0: f32,
+}
+
+impl AxisNodes {
+    fn depth(&self, tau: f32) -> f32 {
+        self.d0 + self.along.depth((tau - self.tau0).max(0.0))
+    }
 }
 
 /// Below this axial extent of a chord (relative to the chord) its mean density is the density
@@ -111,9 +134,10 @@ pub fn cylinder_eq2_density(
     let d_fwd = (along.depth(chord.lam1), along.depth(chord.lam2));
     let span =
         med.sigma_t.max_value() * optical * chord.mu() + mix.sigma_t_span() * (d_fwd.1 - d_fwd.0);
+    let nodes = axis.nodes();
     let integral = chord_integral(chord.len(), panels_for(span), |x| {
         let tau = chord.tau1 + chord.uv * x;
-        let mut w = med.sigma_t.transmittance(axis.depth(tau), med.n) * axis.rho(tau);
+        let mut w = med.sigma_t.transmittance(nodes.depth(tau), med.n) * axis.rho(tau);
         w *= mix.survival_weight(along.depth(chord.lam1 + x));
         w
     });
@@ -141,9 +165,10 @@ pub fn cylinder_truncated_density(
         m.sigma_t_span() * (a.depth(chord.lam2) - a.depth(chord.lam1))
     });
     let span = cam.sigma_t_span() * optical * chord.mu() + fwd_span;
+    let nodes = axis.nodes();
     let integral = chord_integral(chord.len(), panels_for(span), |x| {
         let tau = chord.tau1 + chord.uv * x;
-        let w = cam.survival_weight(axis.depth(tau)) * axis.rho(tau);
+        let w = cam.survival_weight(nodes.depth(tau)) * axis.rho(tau);
         match fwd {
             Some((m, a)) => w * m.survival_weight(a.depth(chord.lam1 + x)),
             None => w,
@@ -166,9 +191,10 @@ pub fn long_eq3_density(
     let (axis, optical) = axial(&med.density, seg, chord);
     let d_fwd = (along.depth(chord.lam1), along.depth(chord.lam2));
     let span = med.sigma_t.max_value() * (optical * chord.mu() + (d_fwd.1 - d_fwd.0));
+    let nodes = axis.nodes();
     let integral = chord_integral(chord.len(), panels_for(span), |x| {
         let tau = chord.tau1 + chord.uv * x;
-        let d = axis.depth(tau) + along.depth(chord.lam1 + x);
+        let d = nodes.depth(tau) + along.depth(chord.lam1 + x);
         med.sigma_t.transmittance(d, med.n) * axis.rho(tau)
     });
     med.sigma_s * integral * k
