@@ -69,6 +69,17 @@ impl ForwardFlight {
         Self { mix, t, seg_len }
     }
 
+    /// The sampled collision depth (distance in a uniform medium), which may exceed the segment.
+    pub fn sampled(&self) -> f32 {
+        self.t
+    }
+
+    /// The same flight over a segment of length `seg_len` (for a flight sampled before its
+    /// segment's depth was known: `sample` with `seg_len = +inf`).
+    pub fn within(self, seg_len: f32) -> Self {
+        Self { seg_len, ..self }
+    }
+
     /// True if the flight leaves the segment before colliding.
     pub fn escapes(&self) -> bool {
         self.t >= self.seg_len || self.t.is_nan()

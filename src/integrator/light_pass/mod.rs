@@ -309,8 +309,16 @@ impl PathStep for ForwardTracer<'_> {
         // distance (method note 10) and the change of variable is the identity.
         let (along, flight) = match med.tracking.as_deref() {
             None => {
-                let along = med.density.along(ray.o, ray.d);
-                let flight = ForwardFlight::sample(med, &self.flux, floor, along.depth(len), rng);
+                // The depth is sampled first, so that a grid ray is built only as far as the
+                // flight and its gathers reach (eq. 3 gathers along the whole segment).
+                let flight = ForwardFlight::sample(med, &self.flux, floor, f32::INFINITY, rng);
+                let u_max = if self.integrator.estimator.whole_forward_segment() {
+                    f32::INFINITY
+                } else {
+                    flight.sampled()
+                };
+                let along = med.density.along_until(ray.o, ray.d, (len, u_max));
+                let flight = flight.within(along.depth(len));
                 (along, flight)
             }
             Some(t) => {

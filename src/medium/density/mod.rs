@@ -117,6 +117,18 @@ impl Density {
         }
     }
 
+    /// The change of variable along the ray `o + d s` as far as distance `s_max` or depth
+    /// `u_max` reaches, whichever is nearer (a grid ray builds only its pieces up to there;
+    /// `GridRay::until` says what its `depth` and `distance` give beyond). The closed-form
+    /// fields have nothing to build and give the whole ray.
+    #[inline]
+    pub fn along_until(&self, o: Vec3, d: Vec3, reach: (f32, f32)) -> Along {
+        match self {
+            Density::Grid(g) => Along::Grid(g.along_until(o, d, reach)),
+            Density::Uniform | Density::Height(_) | Density::Layer(_) => self.along(o, d),
+        }
+    }
+
     /// Least and greatest density over the box `[lo, hi]`.
     pub fn range(&self, lo: Vec3, hi: Vec3) -> (f32, f32) {
         let heights = |up: Vec3| {

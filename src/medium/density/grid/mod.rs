@@ -7,16 +7,22 @@
 //! sample centres (a product of three functions linear in the distance), so its integral is
 //! exact piece by piece: `ray.rs` fits each piece's cubic from four values and integrates it
 //! in closed form. That keeps the change of variable `u = D(s)` of the closed-form fields
-//! exact here too, at the cost of visiting every cell a ray crosses (docs/media.md).
+//! exact here too, at the cost of visiting every cell with smoke a ray crosses (docs/media.md):
+//! `crossings.rs` gives the crossings in order, `occupancy.rs` lets a ray cross a block of 8³
+//! cells with no smoke in one step, and a flight builds its ray only as far as it reaches.
 
+mod crossings;
 pub mod data;
+mod occupancy;
 mod ray;
 pub mod vdb;
 pub mod vol;
 
 use glam::{DVec3, Mat4, Vec3};
 
+use crossings::Crossings;
 pub use data::{GridData, GridFileError};
+use occupancy::Occupancy;
 pub use ray::GridRay;
 
 /// A grid placed in the world.
@@ -29,6 +35,8 @@ pub struct GridField {
     to_index: Mat4,
     /// The box's world bounds (of its eight corners).
     bounds: (Vec3, Vec3),
+    /// The blocks with no smoke, crossed in one step.
+    occupancy: Occupancy,
     /// Least and greatest sample.
     min: f32,
     max: f32,
@@ -94,6 +102,7 @@ impl GridField {
             (a.min(p), b.max(p))
         });
         Ok(Self {
+            occupancy: Occupancy::new(data.res, &values),
             res: data.res,
             values,
             to_index,
@@ -153,7 +162,8 @@ impl GridField {
     fn cell(&self, q: DVec3) -> [(usize, usize, f64); 3] {
         let axis = |x: f64, n: usize| -> (usize, usize, f64) {
             let x = x.clamp(0.0, (n - 1) as f64);
-            let i = (x.floor() as usize).min(n.saturating_sub(2));
+            // `x >= 0`: the cast truncates, which is the floor (and much cheaper than a call).
+            let i = (x as usize).min(n.saturating_sub(2));
             let j = (i + 1).min(n - 1);
             (i, j, x - i as f64)
         };
@@ -177,6 +187,33 @@ impl GridField {
         })
     }
 
+    /// The end of the piece of the index-space ray `a + b t` that starts at crossing `t`, whose
+    /// next crossing is `next` (taken from `cross`), and whether the density is 0 over it: a
+    /// piece in a block with no smoke runs to where the ray leaves the block (the crossings in
+    /// between are skipped), any other piece ends at `next`. `occupied` is the distance to
+    /// which the ray is known to be in a block with smoke (none is looked up before it).
+    fn piece_end(
+        &self,
+        (cross, occupied): (&mut Crossings, &mut f64),
+        (a, b): (DVec3, DVec3),
+        t: f64,
+        next: f64,
+    ) -> (f64, bool) {
+        if next <= *occupied {
+            return (next, false);
+        }
+        let (empty, exit) = self.occupancy.block_of(a + b * (0.5 * (t + next)), a, b);
+        if !empty {
+            *occupied = exit;
+            return (next, false);
+        }
+        if exit > next {
+            cross.skip_to(exit);
+            return (cross.next().unwrap_or(next), true);
+        }
+        (next, true)
+    }
+
     /// Trilinear value at index-space point `q`, clamped to the outermost sample centres (the
     /// caller decides whether `q` is in the box).
     fn at_index(&self, q: DVec3) -> f64 {
@@ -191,33 +228,12 @@ impl GridField {
         lerp(lerp(y0z0, y1z0, fy), lerp(y0z1, y1z1, fy), fz)
     }
 
-    /// The distances `[t0, t1]` (t0 >= 0) over which the ray is inside the box, split at every
-    /// crossing of a plane through sample centres: consecutive entries bound the pieces on which
-    /// the density is one cubic. Empty when the ray misses the box.
-    fn breaks(&self, a: DVec3, b: DVec3) -> Vec<f64> {
-        let n = self.extent();
-        let Some((t0, t1)) = self.box_interval(a, b) else {
-            return Vec::new();
-        };
-        let mut out = vec![t0, t1];
-        for k in 0..3 {
-            if b[k] == 0.0 || n[k] < 2.0 {
-                continue;
-            }
-            let (ea, eb) = (a[k] + b[k] * t0, a[k] + b[k] * t1);
-            let (lo, hi) = (ea.min(eb).max(0.0), ea.max(eb).min(n[k] - 1.0));
-            let mut plane = lo.ceil();
-            while plane <= hi {
-                let t = (plane - a[k]) / b[k];
-                if t > t0 && t < t1 {
-                    out.push(t);
-                }
-                plane += 1.0;
-            }
-        }
-        out.sort_by(f64::total_cmp);
-        out.dedup();
-        out
+    /// The crossings of the index-space ray `a + b t` with the planes through sample centres,
+    /// from where it enters the box to where it leaves: consecutive ones bound the pieces on
+    /// which the density is one cubic. None when the ray misses the box.
+    fn crossings(&self, a: DVec3, b: DVec3) -> Option<Crossings> {
+        let span = self.box_interval(a, b)?;
+        Some(Crossings::new(a, b, span, self.extent()))
     }
 
     /// The distances `[t0, t1]` (`t0 >= 0`) over which the index-space ray `a + b t` is inside
@@ -263,22 +279,37 @@ impl GridField {
         GridRay::new(self, o, d)
     }
 
+    /// The change of variable along the ray as far as `(s_max, u_max)` reaches
+    /// (`GridRay::until`).
+    pub fn along_until(&self, o: Vec3, d: Vec3, reach: (f32, f32)) -> GridRay {
+        GridRay::until(self, o, d, reach)
+    }
+
     /// `∫_0^s rho` along the ray `o + d s`, without keeping the pieces.
     pub fn depth(&self, o: Vec3, d: Vec3, s: f32) -> f32 {
         let (a, b) = self.index_ray(o, d);
         let s = s as f64;
-        let breaks = self.breaks(a, b);
+        let Some(mut cross) = self.crossings(a, b) else {
+            return 0.0;
+        };
         // Two-point Gauss-Legendre is exact for the cubic of each piece.
         let g = 0.5 / 3f64.sqrt();
         let mut total = 0.0;
-        for w in breaks.windows(2) {
-            let (ta, tb) = (w[0], w[1].min(s));
-            if tb <= ta {
+        let (mut ta, mut occupied) = (cross.first(), f64::NEG_INFINITY);
+        while let Some(next) = cross.next() {
+            let (end, empty) = self.piece_end((&mut cross, &mut occupied), (a, b), ta, next);
+            if !empty {
+                let tb = end.min(s);
+                if tb <= ta {
+                    break;
+                }
+                let (m, h) = (0.5 * (ta + tb), tb - ta);
+                let f = |t: f64| self.at_index(a + b * t);
+                total += 0.5 * h * (f(m - g * h) + f(m + g * h));
+            } else if end >= s {
                 break;
             }
-            let (m, h) = (0.5 * (ta + tb), tb - ta);
-            let f = |t: f64| self.at_index(a + b * t);
-            total += 0.5 * h * (f(m - g * h) + f(m + g * h));
+            ta = end;
         }
         total as f32
     }

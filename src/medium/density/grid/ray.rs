@@ -8,7 +8,7 @@
 //! 3` by forward differences (exact: the trilinear field is such a cubic along the piece);
 //! the depth within the piece is `(h / 3) Q(y)` with `Q(y) = ∫_0^y p`.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::GridField;
 
@@ -22,6 +22,22 @@ struct Piece {
 }
 
 impl Piece {
+    /// The piece of length `h` from `t` of the index-space ray `(a, b)`, its cubic fitted
+    /// through four values.
+    fn fit(field: &GridField, (a, b): (DVec3, DVec3), t: f64, h: f64, d0: f64) -> Self {
+        let f = |j: f64| field.at_index(a + b * (t + h * j / 3.0));
+        let (f0, f1, f2, f3) = (f(0.0), f(1.0), f(2.0), f(3.0));
+        let d1 = f1 - f0;
+        let d2 = f2 - 2.0 * f1 + f0;
+        let d3 = f3 - 3.0 * f2 + 3.0 * f1 - f0;
+        Piece {
+            t,
+            h,
+            d0,
+            c: [f0, d1 - d2 / 2.0 + d3 / 3.0, d2 / 2.0 - d3 / 2.0, d3 / 6.0],
+        }
+    }
+
     fn p(&self, y: f64) -> f64 {
         let c = &self.c;
         c[0] + y * (c[1] + y * (c[2] + y * c[3]))
@@ -77,15 +93,34 @@ pub struct GridRay {
 }
 
 impl GridRay {
+    /// Every piece of the ray inside the box.
     pub(super) fn new(field: &GridField, o: Vec3, d: Vec3) -> Self {
+        Self::until(field, o, d, (f32::INFINITY, f32::INFINITY))
+    }
+
+    /// The pieces up to distance `s_max` or to the first piece end at which the depth, as an
+    /// f32, exceeds `u_max`, whichever comes first. Within that reach `depth` and `distance`
+    /// give the whole ray's numbers bit for bit (its pieces are the whole ray's first ones).
+    /// Beyond it `depth` gives the depth built so far, which is at most the whole ray's (and,
+    /// when cut by `u_max`, still more than `u_max`), and `distance` gives `+inf`.
+    pub(super) fn until(field: &GridField, o: Vec3, d: Vec3, (s_max, u_max): (f32, f32)) -> Self {
         let (a, b) = field.index_ray(o, d);
-        let breaks = field.breaks(a, b);
-        let mut pieces: Vec<Piece> = Vec::with_capacity(breaks.len().saturating_sub(1));
-        let mut d0 = 0.0;
-        for w in breaks.windows(2) {
-            let (t, h) = (w[0], w[1] - w[0]);
-            if field.empty_at(a + b * (t + 0.5 * h)) {
-                // No smoke in the cell: one zero piece, merged with an empty one before it.
+        let mut pieces: Vec<Piece> = Vec::new();
+        let Some(mut cross) = field.crossings(a, b) else {
+            return Self { pieces };
+        };
+        // A NaN depth (a flight that never collides) reaches as far as s_max.
+        let u_max = if u_max.is_nan() { f64::INFINITY } else { u_max as f64 };
+        let s_max = s_max as f64;
+        let mut t = cross.first();
+        let (mut d0, mut occupied) = (0.0, f64::NEG_INFINITY);
+        while t < s_max && (d0 as f32 as f64) <= u_max {
+            let Some(next) = cross.next() else { break };
+            let (end, empty) = field.piece_end((&mut cross, &mut occupied), (a, b), t, next);
+            let h = end - t;
+            if empty || field.empty_at(a + b * (t + 0.5 * h)) {
+                // No smoke in the cell or block: one zero piece, merged with an empty one
+                // before it.
                 match pieces.last_mut() {
                     Some(p) if p.c == [0.0; 4] => p.h = t + h - p.t,
                     Some(_) | None => pieces.push(Piece {
@@ -95,21 +130,12 @@ impl GridRay {
                         c: [0.0; 4],
                     }),
                 }
-                continue;
+            } else {
+                let piece = Piece::fit(field, (a, b), t, h, d0);
+                d0 += piece.depth();
+                pieces.push(piece);
             }
-            let f = |j: f64| field.at_index(a + b * (t + h * j / 3.0));
-            let (f0, f1, f2, f3) = (f(0.0), f(1.0), f(2.0), f(3.0));
-            let d1 = f1 - f0;
-            let d2 = f2 - 2.0 * f1 + f0;
-            let d3 = f3 - 3.0 * f2 + 3.0 * f1 - f0;
-            let piece = Piece {
-                t,
-                h,
-                d0,
-                c: [f0, d1 - d2 / 2.0 + d3 / 3.0, d2 / 2.0 - d3 / 2.0, d3 / 6.0],
-            };
-            d0 += piece.depth();
-            pieces.push(piece);
+            t = end;
         }
         Self { pieces }
     }

@@ -1,7 +1,7 @@
 //! The grid field: its sample convention (Mitsuba 3's), the exact depth along rays against
 //! quadrature, the inverse, and refusals.
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{DVec3, Mat4, Quat, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -175,4 +175,155 @@ fn bad_samples_and_empty_grids_are_refused() {
         GridField::new(none, 1.0, None, "t".into()).unwrap_err(),
         GridValueError::Placement
     );
+}
+
+/// A 37 x 21 x 29 grid (several occupancy blocks per axis) that is empty but for a random blob
+/// and two lone samples, one on the corner shared by eight blocks: rays cross whole empty
+/// blocks and blocks whose only smoke is a sample on their boundary.
+fn sparse_field(seed: u64) -> (GridField, Vec<Vec3>) {
+    let res = [37usize, 21, 29];
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let mut values = vec![0.0f32; res[0] * res[1] * res[2]];
+    let idx = |x: usize, y: usize, z: usize| (z * res[1] + y) * res[0] + x;
+    for z in 3..11 {
+        for y in 10..19 {
+            for x in 20..31 {
+                values[idx(x, y, z)] = 2.0 * rng.random::<f32>();
+            }
+        }
+    }
+    let lone = [[16usize, 8, 8], [5, 13, 22]];
+    for [x, y, z] in lone {
+        values[idx(x, y, z)] = 3.0;
+    }
+    let data = GridData {
+        res,
+        values,
+        bounds: None,
+    };
+    let f = GridField::new(data, 1.0, Some(placement()), "sparse".into()).unwrap();
+    let to_world = |[x, y, z]: [usize; 3]| {
+        let unit = Vec3::new(
+            (x as f32 + 0.5) / res[0] as f32,
+            (y as f32 + 0.5) / res[1] as f32,
+            (z as f32 + 0.5) / res[2] as f32,
+        );
+        placement().transform_point3(unit)
+    };
+    (f, lone.iter().map(|&q| to_world(q)).collect())
+}
+
+/// Random rays and rays from random origins through the given points.
+fn rays_through(seed: u64, targets: &[Vec3]) -> Vec<(Vec3, Vec3)> {
+    let mut out = rays(seed);
+    let mut rng = Pcg64::seed_from_u64(seed + 1000);
+    for &p in targets {
+        for _ in 0..6 {
+            let o = Vec3::new(rng.random(), rng.random(), rng.random()) * 6.0 - 3.0;
+            out.push((o, (p - o).normalize()));
+        }
+    }
+    out
+}
+
+#[test]
+fn crossings_are_the_sorted_plane_crossings() {
+    let (f, _) = sparse_field(1);
+    let n = f.extent();
+    let mut rng = Pcg64::seed_from_u64(5);
+    for _ in 0..300 {
+        let a = DVec3::new(rng.random(), rng.random(), rng.random()) * 80.0 - 20.0;
+        let mut b = DVec3::new(rng.random(), rng.random(), rng.random()) * 2.0 - 1.0;
+        // Some rays parallel to a plane.
+        if rng.random::<f32>() < 0.2 {
+            b[rng.random_range(0..3)] = 0.0;
+        }
+        let Some((t0, t1)) = f.box_interval(a, b) else {
+            assert!(f.crossings(a, b).is_none());
+            continue;
+        };
+        // Every plane's crossing, collected and sorted.
+        let mut want = vec![t0, t1];
+        for k in 0..3 {
+            if b[k] == 0.0 {
+                continue;
+            }
+            for p in 0..n[k] as usize {
+                let t = (p as f64 - a[k]) / b[k];
+                if t > t0 && t < t1 {
+                    want.push(t);
+                }
+            }
+        }
+        want.sort_by(f64::total_cmp);
+        want.dedup();
+        let mut cross = f.crossings(a, b).unwrap();
+        let mut got = vec![cross.first()];
+        got.extend(cross.by_ref());
+        assert_eq!(got, want);
+    }
+}
+
+#[test]
+fn empty_blocks_are_crossed_in_one_step_and_lose_no_smoke() {
+    for seed in 0..3 {
+        let (f, lone) = sparse_field(seed);
+        for (o, d) in rays_through(seed + 20, &lone) {
+            let ray = f.along(o, d);
+            for s in [0.3f32, 1.7, 4.0, 7.5] {
+                let want = quadrature(&f, o, d, s);
+                let got = ray.depth(s) as f64;
+                assert!(
+                    (got - want).abs() <= 2e-5 * (1.0 + want),
+                    "{o} {d} {s}: {got} vs {want}"
+                );
+                let by_points = f.depth(o, d, s) as f64;
+                assert!(
+                    (by_points - want).abs() <= 2e-5 * (1.0 + want),
+                    "{by_points}"
+                );
+            }
+        }
+        // The lone samples are seen: a ray straight through each has depth.
+        for &p in &lone {
+            let o = p - Vec3::X * 5.0;
+            assert!(f.along(o, Vec3::X).depth(10.0) > 0.0, "{p}");
+        }
+    }
+}
+
+#[test]
+fn a_ray_cut_short_is_the_whole_rays_beginning() {
+    let (f, lone) = sparse_field(7);
+    let mut rng = Pcg64::seed_from_u64(8);
+    for (o, d) in rays_through(30, &lone) {
+        let whole = f.along(o, d);
+        let total = whole.depth(f32::INFINITY);
+        for _ in 0..5 {
+            let s_max = 8.0 * rng.random::<f32>();
+            let u_max = total * 1.2 * rng.random::<f32>();
+            let cut = f.along_until(o, d, (s_max, u_max));
+            let reach = s_max.min(whole.distance(u_max));
+            for j in 0..=20 {
+                let s = reach.min(10.0) * j as f32 / 20.0;
+                assert_eq!(cut.depth(s).to_bits(), whole.depth(s).to_bits(), "{s}");
+            }
+            let reach_u = u_max.min(whole.depth(s_max));
+            for j in 0..=20 {
+                let u = reach_u * j as f32 / 20.0;
+                assert_eq!(
+                    cut.distance(u).to_bits(),
+                    whole.distance(u).to_bits(),
+                    "{u}"
+                );
+            }
+            // Beyond its reach the cut ray's depth never exceeds the whole ray's, and a cut by
+            // depth passes u_max (a flight's escape test reads the same answer from both).
+            let far = cut.depth(f32::INFINITY);
+            assert!(far <= total);
+            if whole.depth(s_max) > u_max {
+                assert!(far > u_max, "{far} {u_max}");
+            }
+        }
+    }
 }
