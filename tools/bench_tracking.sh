@@ -5,7 +5,10 @@
 # median wall and CPU seconds of the whole process, and the camera and light passes' seconds
 # (--verbose). Usage: tools/bench_tracking.sh [RUNS] [PASSES] (defaults 5 and 2).
 # Another scene: SCENE=tools/bench/ground-fog.toml MEDIUM=fog MULTS=1 tools/bench_tracking.sh 5 4
-# (the thin layer; MULTS=1 leaves the density as the scene has it).
+# (the thin layer; MULTS=1 leaves the density as the scene has it). A density without a
+# `multiplier` key (noise) is scaled through the medium's coefficients: SIGMA="6 0.05" gives the
+# scene's sigma_s and sigma_a, which are multiplied, e.g.
+# SCENE=tools/bench/ground-fog.toml MEDIUM=fog SIGMA="6 0.05" MULTS="1 3 10" tools/bench_tracking.sh 5 4
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
@@ -18,7 +21,11 @@ scene=${SCENE:-scenes/smoke-plume.toml}
 medium=${MEDIUM:-smoke}
 for mult in ${MULTS:-1 10 30 100}; do
   scale=()
-  if [ "$mult" != 1 ]; then scale=(--set "media.$medium.density.multiplier=$mult"); fi
+  if [ "$mult" != 1 ] && [ -n "${SIGMA:-}" ]; then
+    read -r ss sa <<<"$SIGMA"
+    scale=(--set "media.$medium.sigma_s=$(awk -v a="$ss" -v m="$mult" 'BEGIN{print a*m}')"
+      --set "media.$medium.sigma_a=$(awk -v a="$sa" -v m="$mult" 'BEGIN{print a*m}')")
+  elif [ "$mult" != 1 ]; then scale=(--set "media.$medium.density.multiplier=$mult"); fi
   for t in exact delta delta-global; do
     rows=()
     for r in $(seq "$runs"); do
