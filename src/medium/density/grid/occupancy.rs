@@ -83,7 +83,11 @@ impl Occupancy {
 /// The blocks (out of `count`) whose samples include sample `i`.
 fn owners(i: usize, count: usize) -> impl Iterator<Item = usize> {
     let hi = (i / B).min(count - 1);
-    let lo = if i.is_multiple_of(B) && i > 0 { i / B - 1 } else { hi };
+    let lo = if i.is_multiple_of(B) && i > 0 {
+        i / B - 1
+    } else {
+        hi
+    };
     lo..=hi
 }
 

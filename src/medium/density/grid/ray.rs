@@ -110,7 +110,11 @@ impl GridRay {
             return Self { pieces };
         };
         // A NaN depth (a flight that never collides) reaches as far as s_max.
-        let u_max = if u_max.is_nan() { f64::INFINITY } else { u_max as f64 };
+        let u_max = if u_max.is_nan() {
+            f64::INFINITY
+        } else {
+            u_max as f64
+        };
         let s_max = s_max as f64;
         let mut t = cross.first();
         let (mut d0, mut occupied) = (0.0, f64::NEG_INFINITY);
