@@ -229,3 +229,38 @@ fn a_scene_is_picked_by_index_or_name_and_an_absent_one_is_refused() {
     let e = shapes("\"Park\"").expect_err("no such name").to_string();
     assert!(e.contains("shapes.0.scene") && e.contains("`Park`"), "{e}");
 }
+
+/// A problem only the imported parts have (here the shape's `emit_scale` beside the luminance an
+/// emissive glTF material gives its part) is placed at the glTF shape's own keys, with the
+/// part named, not at a `shapes.<n>` the scene file does not have.
+#[test]
+fn a_problem_of_an_imported_part_names_the_gltf_shape_and_the_part() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut g = Gltf::new();
+    let m = g.material(json!({ "name": "Lens", "emissiveFactor": [1.0, 0.9, 0.8] }));
+    let mesh = g.mesh(
+        &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        None,
+        &[0, 1, 2],
+        Some(m),
+    );
+    g.node(json!({ "mesh": mesh }));
+    g.write_gltf(dir.path(), "lens");
+    let path = dir.path().join("scene.toml");
+    std::fs::write(
+        &path,
+        format!("{SCENE}file = \"lens.gltf\"\nemit_scale = 2.0\n"),
+    )
+    .expect("write scene");
+    let e = match brume::scene::load(&path, &[]) {
+        Ok(_) => panic!("emit_scale beside a glTF emitter was accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("shapes.0.") && !e.contains("shapes.1"), "{e}");
+    // Line 9 is the glTF shape's table (`luminance` is the part's, not written in the file).
+    assert!(
+        e.contains("scene.toml:9:1: key `shapes.0.luminance`"),
+        "{e}"
+    );
+    assert!(e.contains("meshes[0].primitives[0] of lens.gltf"), "{e}");
+}

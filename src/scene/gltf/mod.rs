@@ -89,13 +89,38 @@ pub fn expand(loaded: &mut LoadedScene) -> Result<(), SceneError> {
         loaded.imports.push(imported.report);
     }
     if let Some(problem) = super::validate::validate(loaded).into_iter().next() {
+        let (key, part) = in_file(&loaded.desc, &problem.key);
         let message = format!(
-            "{} (after importing the scene's glTF files)",
+            "{}{part} (after importing the scene's glTF files)",
             problem.message
         );
-        return Err(loaded.source().invalid(&problem.key, message));
+        return Err(loaded.source().invalid(&key, message));
     }
     Ok(())
+}
+
+/// Where a problem of the expanded scene is in the scene file: an imported part's keys
+/// (`shapes.<n>...`, with `n` past the file's shapes) are the glTF shape's it came from, and the
+/// part is named in the message's `" in <part> of <file>"`.
+pub(crate) fn in_file(d: &super::desc::SceneDesc, key: &str) -> (String, String) {
+    let Some(rest) = key.strip_prefix("shapes.") else {
+        return (key.to_string(), String::new());
+    };
+    let (n, tail) = rest.split_once('.').unwrap_or((rest, ""));
+    let part = n.parse::<usize>().ok().and_then(|n| {
+        let ShapeKindDesc::Gltf(g) = &d.shapes.get(n)?.kind else {
+            return None;
+        };
+        Some((g.part.as_ref()?, g.file.as_str()))
+    });
+    let Some((part, file)) = part else {
+        return (key.to_string(), String::new());
+    };
+    let key = match tail {
+        "" => format!("shapes.{}", part.shape),
+        t => format!("shapes.{}.{t}", part.shape),
+    };
+    (key, format!(" in {} of {file}", part.path))
 }
 
 /// Does the scene file (or a `--set`) place the camera?
