@@ -178,6 +178,18 @@ impl Material {
         }
     }
 
+    /// Can light pass through the surface (a dielectric, alone or blended)?
+    pub fn transmits(&self) -> bool {
+        match self {
+            Material::Dielectric(_) => true,
+            Material::Blend(b) => b.first.transmits() || b.second.transmits(),
+            Material::Lambert { .. }
+            | Material::Mirror { .. }
+            | Material::Glossy(_)
+            | Material::Conductor(_) => false,
+        }
+    }
+
     /// Has the material a delta (specular) part only?
     pub fn is_specular(&self) -> bool {
         match self {

@@ -85,6 +85,9 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
         &lights,
         (radius_key, b.radius),
     ));
+    warnings.extend(shut_in_warnings(
+        scene, &geometry, &materials, &lights, &camera,
+    ));
     let outside = b.outside_medium();
     let mut built = Scene {
         grid,
@@ -225,6 +228,42 @@ fn world_box(geometry: &Geometry, camera: &Camera, radius: f32) -> (Vec3, Vec3) 
     lo -= Vec3::splat(margin);
     hi += Vec3::splat(margin);
     (lo, hi)
+}
+
+/// A warning for each light shut inside an opaque shape the camera is outside of
+/// (`enclosed.rs`), at the light's key.
+fn shut_in_warnings(
+    scene: &LoadedScene,
+    geometry: &Geometry,
+    materials: &[Material],
+    lights: &LightSet,
+    camera: &Camera,
+) -> Vec<SceneWarning> {
+    let all = lights.lights();
+    let areas = all
+        .iter()
+        .take_while(|l| matches!(l, Light::Area { .. }))
+        .count();
+    let names: Vec<&String> = scene.desc.materials.keys().collect();
+    super::enclosed::shut_in(geometry, materials, all, camera.position())
+        .into_iter()
+        .map(|(i, shape)| {
+            let (key, part) = super::gltf::in_file(&scene.desc, &format!("shapes.{shape}"));
+            let material = geometry
+                .shape(shape)
+                .material
+                .and_then(|m| names.get(m as usize))
+                .map_or(String::new(), |n| format!(", material `{n}`"));
+            scene.source().warning(
+                &format!("lights.{}", i - areas),
+                format!(
+                    "the light is shut inside {key}{part}{material}, which lets no light through, \
+                     and the camera is outside it: none of its light reaches the image (give the \
+                     shape a material that transmits, such as a dielectric, or move the light)"
+                ),
+            )
+        })
+        .collect()
 }
 
 /// Warnings that need the built scene: no light that emits, a radius as large as the scene.

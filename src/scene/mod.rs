@@ -12,6 +12,7 @@ mod camera;
 mod check;
 pub mod density_report;
 pub mod desc;
+mod enclosed;
 mod error;
 mod gltf;
 pub mod identity;
