@@ -12,14 +12,12 @@ use pyo3::prelude::*;
 
 use brume::film::{Film, FilmId};
 use brume::integrator::auto::Choice;
-use brume::integrator::{Budget, Renderer};
+use brume::integrator::{Budget, MAX_PASS_END, Renderer};
 use brume::scene::LoadedScene;
 
 use crate::RenderError;
 use crate::result::RenderResult;
 
-/// Pass indices stay below this, as on the command line (`--pass-range`).
-const MAX_PASS_END: u64 = u32::MAX as u64;
 /// More worker threads than this is a typo, as on the command line (`--threads`).
 const MAX_THREADS: i64 = 1024;
 

@@ -33,7 +33,7 @@ pub use camera_pass::OverBudget;
 pub use direct::Direct;
 pub use estimator::Estimator;
 pub use memory::{MemoryEstimate, format_bytes};
-pub use pass::{Budget, Renderer, Stats};
+pub use pass::{Budget, MAX_PASS_END, Renderer, Stats};
 pub use radius::{Radii, RadiusSchedule, radius_for_pass};
 pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
 

@@ -14,6 +14,11 @@ use super::{Integrator, Radii};
 use crate::film::{Film, PassBuffer, SpectralImage};
 use crate::world::Scene;
 
+/// Pass indices stay below this: the pass budget counts in u32, and a range starting near
+/// 2^53 would not even be exact in the f64 statistics of the film. Every front end (the CLI's
+/// `--pass-range`, the Python package's `pass_range`) checks against this one bound.
+pub const MAX_PASS_END: u64 = u32::MAX as u64;
+
 /// How much to render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Budget {

@@ -6,14 +6,10 @@
 use std::path::Path;
 
 use brume::film::FilmFile;
-use brume::integrator::Budget;
+use brume::integrator::{Budget, MAX_PASS_END};
 
 use super::super::RenderArgs;
 use super::super::command_line::CommandLine;
-
-/// Pass indices stay below this: the pass budget counts in u32, and a range starting near
-/// 2^53 would not even be exact in the f64 statistics of the film.
-pub const MAX_PASS_END: u64 = u32::MAX as u64;
 
 /// Options that choose the passes (replaced in the hints).
 const PASS_OPTIONS: [&str; 4] = ["--passes", "--time", "--pass-range", "--resume"];
