@@ -97,7 +97,7 @@ impl Crossings {
         }
     }
 
-    /// The first distance, `t0`.
+    /// The first distance, `t0` (called before `next`, which moves on from it).
     pub(super) fn first(&self) -> f64 {
         self.prev
     }

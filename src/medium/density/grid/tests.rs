@@ -84,6 +84,23 @@ fn quadrature(f: &GridField, o: Vec3, d: Vec3, s: f32) -> f64 {
     sum * h / 3.0
 }
 
+/// Asserts that the ray's depth to `s` and the one-off depth match the quadrature within 2e-5
+/// (relative to 1 + depth); the ray's depth.
+fn matches_quadrature(f: &GridField, ray: &GridRay, (o, d): (Vec3, Vec3), s: f32) -> f64 {
+    let want = quadrature(f, o, d, s);
+    let got = ray.depth(s) as f64;
+    assert!(
+        (got - want).abs() <= 2e-5 * (1.0 + want),
+        "{o} {d} {s}: {got} vs {want}"
+    );
+    let by_points = f.depth(o, d, s) as f64;
+    assert!(
+        (by_points - want).abs() <= 2e-5 * (1.0 + want),
+        "{o} {d} {s}: one-off {by_points} vs {want}"
+    );
+    got
+}
+
 #[test]
 fn samples_sit_at_cell_centres_and_clamp_in_the_outer_half_cells() {
     let data = GridData {
@@ -107,12 +124,7 @@ fn depth_is_the_integral_of_the_density_and_distance_inverts_it() {
         for (o, d) in rays(seed + 10) {
             let ray = f.along(o, d);
             for s in [0.3f32, 1.7, 4.0, 7.5] {
-                let want = quadrature(&f, o, d, s);
-                let got = ray.depth(s) as f64;
-                assert!(
-                    (got - want).abs() <= 2e-5 * (1.0 + want),
-                    "{o} {d} {s}: {got} vs {want}"
-                );
+                let got = matches_quadrature(&f, &ray, (o, d), s);
                 assert!((f.depth(o, d, s) as f64 - got).abs() <= 1e-5 * (1.0 + got));
                 let back = ray.distance(ray.depth(s));
                 // Where the density is 0 up to s, any distance in the gap has that depth.
@@ -271,17 +283,7 @@ fn empty_blocks_are_crossed_in_one_step_and_lose_no_smoke() {
         for (o, d) in rays_through(seed + 20, &lone) {
             let ray = f.along(o, d);
             for s in [0.3f32, 1.7, 4.0, 7.5] {
-                let want = quadrature(&f, o, d, s);
-                let got = ray.depth(s) as f64;
-                assert!(
-                    (got - want).abs() <= 2e-5 * (1.0 + want),
-                    "{o} {d} {s}: {got} vs {want}"
-                );
-                let by_points = f.depth(o, d, s) as f64;
-                assert!(
-                    (by_points - want).abs() <= 2e-5 * (1.0 + want),
-                    "{by_points}"
-                );
+                matches_quadrature(&f, &ray, (o, d), s);
             }
         }
         // The lone samples are seen: a ray straight through each has depth.
