@@ -204,3 +204,53 @@ transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
     let (on, off) = (scene(&t(true), &[]), scene(&t(false), &[]));
     same_expectation("mirror caustic", (&on, 900), (&off, 1100), "", 0.1);
 }
+
+/// `splat_to_camera` absent: on where next-event estimation leaves a light's direct light to
+/// forward rays (here a laser's spot on the floor), off with `direct = "photons"` and where
+/// next-event estimation handles every light (here with a mirror, whose caustic the splat
+/// would otherwise take: so each default is told apart from the other value).
+#[test]
+fn the_splat_is_on_by_default_where_next_event_estimation_leaves_a_light_to_forward_rays() {
+    const LASER: &str = r#"
+[[lights]]
+type = "laser"
+position = [-0.8, 1.0, 0.1]
+direction = [0.8, -1.0, -0.1]
+radius = 0.01
+power = 20.0
+"#;
+    const MIRROR: &str = r#"
+[materials.mirror]
+type = "mirror"
+albedo = 0.9
+[[shapes]]
+type = "quad"
+size = [8, 3]
+material = "mirror"
+transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
+"#;
+    let img = |direct: &str, extra: &str, splat: Option<bool>| {
+        let t = text(PERSPECTIVE, false, direct, 0.05) + extra;
+        let key = match splat {
+            Some(on) => format!("splat_to_camera = {on}"),
+            None => String::new(),
+        };
+        let t = t
+            .replace("splat_to_camera = true", &key)
+            .replace("splat_to_camera = false", &key);
+        render(&scene(&t, &[]), 3, 2).data
+    };
+    for (direct, extra, on) in [
+        ("nee", LASER, true),
+        ("photons", LASER, false),
+        ("nee", MIRROR, false),
+    ] {
+        let default = img(direct, extra, None);
+        assert_eq!(default, img(direct, extra, Some(on)), "{direct}: default");
+        assert_ne!(
+            default,
+            img(direct, extra, Some(!on)),
+            "{direct}: other value"
+        );
+    }
+}

@@ -110,9 +110,11 @@ pub struct IntegratorDesc {
     pub radius_indirect: Option<f32>,
     /// Light tracing to the camera for the direct light of lights that are not next-event
     /// estimated, where the camera sees it on a surface (`camera_splat`): sharp and low-noise
-    /// small spots (a laser's). Off: the paper's surface spheres gather it.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub splat_to_camera: bool,
+    /// small spots (a laser's). Off: the paper's surface spheres gather it. Absent: on when
+    /// next-event estimation leaves some light's direct light to forward rays
+    /// (`Integrator::from_desc`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub splat_to_camera: Option<bool>,
     /// In `first-extinction` mode, camera paths always go on past a medium segment to what lies
     /// behind it (a surface, another medium), weighted by the segment's transmittance, instead
     /// of only when their walk gets through (weight 1, probability the transmittance). The
@@ -162,7 +164,7 @@ impl Default for IntegratorDesc {
         Self {
             radius: Setting::Auto,
             radius_indirect: None,
-            splat_to_camera: false,
+            splat_to_camera: None,
             expected_transmission: None,
             alpha: 1.0,
             forward_rays: Setting::Auto,

@@ -107,7 +107,7 @@ pub fn light_pass(
                         specular_chain: true,
                         // The gather tiles of a pass trace their own forward rays; one set
                         // splats.
-                        splat_norm: (integrator.settings.splat_to_camera && job.tile == 0)
+                        splat_norm: (integrator.splat_to_camera && job.tile == 0)
                             .then(|| 1.0 / total as f32),
                         hits: 0,
                         to_discs: false,
@@ -246,7 +246,7 @@ impl ForwardTracer<'_> {
         // and caustic light to it (in every tile; `camera_splat`).
         let skip_primary = self.specular_chain
             && matches!(target, Target::Image { .. })
-            && self.integrator.settings.splat_to_camera;
+            && self.integrator.splat_to_camera;
         let radius = gather.radii.of(direct);
         let inv_area = 1.0 / (PI * radius * radius);
         let mut hits = 0u64;

@@ -72,7 +72,7 @@ impl ForwardTracer<'_> {
         // (`camera_splat`).
         let skip_primary = if self.specular_chain
             && matches!(target, Target::Image { .. })
-            && self.integrator.settings.splat_to_camera
+            && self.integrator.splat_to_camera
         {
             PRIMARY
         } else {
