@@ -4,7 +4,8 @@
 //! Memory per volume: a 12-byte record (segment, distance, scalar weight), the BVH (about 10
 //! bytes), and shares of its 36-byte segment record and of the throughput table. Records are
 //! stored in the BVH's leaf order, so the BVH needs no primitive index array and a query reads
-//! neighbouring records from neighbouring memory.
+//! neighbouring records from neighbouring memory. The volumes' BVH is one per spatial part
+//! (`volume_parts`), so that the parts' serial conversions run side by side.
 
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -43,9 +44,25 @@ pub struct Gather {
     pub bins: usize,
     surface_bvh: Option<CwBvh>,
     /// Segment queries are long rays through dense clouds of volumes: the 8-wide compressed BVH
-    /// traverses them several times faster than the binary one.
-    volume_bvh: Option<CwBvh>,
+    /// traverses them several times faster than the binary one. One BVH per spatial part of
+    /// the volumes (`volume_parts`), built side by side.
+    volume_bvh: Vec<VolumePart>,
 }
+
+/// The BVH over one spatial part of the volumes, whose records are `volumes[first..]` in the
+/// BVH's leaf order.
+struct VolumePart {
+    bvh: CwBvh,
+    first: usize,
+}
+
+/// Volumes per part of the volume BVH, and the most parts. obvhs converts a binary BVH to the
+/// wide one on one thread, the longest step of a pass's build: parts of this size convert in
+/// parallel, while a query pays one root per part it does not cross. The part count depends
+/// on the volumes only (never on the thread count), so the hits' order, and the image's bits,
+/// are the same on any machine.
+const PART_VOLUMES: usize = 1 << 16;
+const MAX_PARTS: usize = 16;
 
 /// obvhs' wide traversal skips nodes that end within this distance of the ray origin; segment
 /// queries start this far behind their origin so that no volume near it is missed.
@@ -59,6 +76,7 @@ fn build_cwbvh(aabbs: &[Aabb]) -> Option<CwBvh> {
     if aabbs.is_empty() {
         return None;
     }
+    // obvhs reads a leaf's index as a position in this array: it must be 0..n.
     let indices = (0..aabbs.len() as u32).collect();
     let bvh2 = PlocBuilder::new().build(
         PlocSearchDistance::VeryLow,
@@ -72,17 +90,75 @@ fn build_cwbvh(aabbs: &[Aabb]) -> Option<CwBvh> {
     Some(bvh2_to_cwbvh(&bvh2, 3, false, false))
 }
 
-/// Puts `records` in the BVH's leaf order and drops the BVH's index array: the traversal's
-/// primitive ids then address the records directly.
-fn leaf_order<T: Copy + Send + Sync>(bvh: &mut Option<CwBvh>, records: &mut Vec<T>) {
-    if let Some(b) = bvh {
-        *records = b
-            .primitive_indices
-            .par_iter()
-            .map(|&i| records[i as usize])
-            .collect();
-        b.primitive_indices = Vec::new();
+/// The BVH's primitives of `records` in its leaf order; drops the BVH's index array: the
+/// traversal's primitive ids then address the returned records directly.
+fn leaf_order<T: Copy + Send + Sync>(bvh: &mut CwBvh, records: &[T]) -> Vec<T> {
+    let leaf = bvh
+        .primitive_indices
+        .par_iter()
+        .map(|&i| records[i as usize])
+        .collect();
+    bvh.primitive_indices = Vec::new();
+    leaf
+}
+
+/// The volume BVH's parts over the boxes `aabbs` of `volumes`, and the volumes in the parts'
+/// leaf order. The parts halve the volumes at the median of their boxes' centres along the
+/// longest axis of those centres' bounds, recursively, ties broken by index: a deterministic
+/// split into a power of two of parts of about `PART_VOLUMES`.
+fn volume_parts(aabbs: &[Aabb], volumes: &[VolumeRecord]) -> (Vec<VolumePart>, Vec<VolumeRecord>) {
+    let parts = aabbs
+        .len()
+        .div_ceil(PART_VOLUMES)
+        .next_power_of_two()
+        .min(MAX_PARTS);
+    let mut ids: Vec<u32> = (0..aabbs.len() as u32).collect();
+    let mut groups: Vec<&mut [u32]> = vec![&mut ids[..]];
+    while groups.len() < parts {
+        groups = groups.into_iter().flat_map(|g| halve(aabbs, g)).collect();
     }
+    let built: Vec<(CwBvh, Vec<VolumeRecord>)> = groups
+        .par_iter()
+        .map(|g| {
+            let boxes: Vec<Aabb> = g.iter().map(|&i| aabbs[i as usize]).collect();
+            let part: Vec<VolumeRecord> = g.iter().map(|&i| volumes[i as usize]).collect();
+            build_cwbvh(&boxes).map(|mut bvh| {
+                let records = leaf_order(&mut bvh, &part);
+                (bvh, records)
+            })
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut leaf = Vec::with_capacity(volumes.len());
+    let mut out = Vec::with_capacity(built.len());
+    for (bvh, records) in built {
+        out.push(VolumePart {
+            bvh,
+            first: leaf.len(),
+        });
+        leaf.extend(records);
+    }
+    (out, leaf)
+}
+
+/// `ids` split in two at the median of their boxes' centres along the longest axis.
+fn halve<'a>(aabbs: &[Aabb], ids: &'a mut [u32]) -> [&'a mut [u32]; 2] {
+    let centre = |i: u32| aabbs[i as usize].center();
+    let (lo, hi) = ids.iter().fold(
+        (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &i| (lo.min(centre(i)), hi.max(centre(i))),
+    );
+    let axis = (hi - lo).max_position();
+    let mid = ids.len() / 2;
+    if mid > 0 {
+        ids.select_nth_unstable_by(mid, |&a, &b| {
+            centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b))
+        });
+    }
+    let (a, b) = ids.split_at_mut(mid);
+    [a, b]
 }
 
 /// Renumbers the segments in the order the (leaf-ordered) volumes first use them, so that a
@@ -149,7 +225,7 @@ impl Gather {
         // The boxes and the leaf order are computed in parallel (collected in order: the same
         // bits on any number of threads); the conversion to the wide BVH is serial in obvhs,
         // so the two BVHs are built side by side.
-        let (mut surface_bvh, mut volume_bvh) = rayon::join(
+        let (mut surface_bvh, (volume_bvh, leaf_volumes)) = rayon::join(
             || {
                 let aabbs: Vec<Aabb> = surfaces
                     .par_iter()
@@ -162,13 +238,13 @@ impl Gather {
                     .par_iter()
                     .map(|v| estimator.bounds(&segments[v.segment as usize], v, radius))
                     .collect();
-                build_cwbvh(&aabbs)
+                volume_parts(&aabbs, &volumes)
             },
         );
-        rayon::join(
-            || leaf_order(&mut surface_bvh, &mut surfaces),
-            || leaf_order(&mut volume_bvh, &mut volumes),
-        );
+        if let Some(bvh) = &mut surface_bvh {
+            surfaces = leaf_order(bvh, &surfaces);
+        }
+        volumes = leaf_volumes;
         segment_order(&mut segments, &mut volumes);
         Self {
             radii,
@@ -281,35 +357,35 @@ impl Gather {
         len: f32,
         mut f: impl FnMut(&SegmentRecord, &VolumeRecord),
     ) {
-        let Some(bvh) = &self.volume_bvh else { return };
         let d = positive_zero(d);
         let start = Vec3A::from(o) - d * CWBVH_EPSILON;
         let ray = BvhRay::new(start, d, 0.0, len + CWBVH_EPSILON);
-        bvh.ray_traverse_anyhit(ray, |_, i| {
-            let v = &self.volumes[i];
-            f(&self.segments[v.segment as usize], v);
-        });
+        for part in &self.volume_bvh {
+            part.bvh.ray_traverse_anyhit(ray, |_, i| {
+                let v = &self.volumes[part.first + i];
+                f(&self.segments[v.segment as usize], v);
+            });
+        }
     }
 
     /// Number of BVH nodes (surface, volume), for reports.
     pub fn bvh_nodes(&self) -> (usize, usize) {
         let nodes = |b: &Option<CwBvh>| b.as_ref().map_or(0, |b| b.nodes.len());
-        (nodes(&self.surface_bvh), nodes(&self.volume_bvh))
+        let volume = self.volume_bvh.iter().map(|p| p.bvh.nodes.len()).sum();
+        (nodes(&self.surface_bvh), volume)
     }
 
     /// Bytes held by the records, the throughput table and the BVHs.
     pub fn bytes(&self) -> usize {
-        let cwbvh = |b: &Option<CwBvh>| {
-            b.as_ref().map_or(0, |b| {
-                b.nodes.len() * std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>()
-                    + b.primitive_indices.len() * 4
-            })
+        let cwbvh = |b: &CwBvh| {
+            b.nodes.len() * std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>()
+                + b.primitive_indices.len() * 4
         };
         self.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
             + self.segments.len() * std::mem::size_of::<SegmentRecord>()
             + self.volumes.len() * std::mem::size_of::<VolumeRecord>()
             + self.throughputs.len() * 4
-            + cwbvh(&self.surface_bvh)
-            + cwbvh(&self.volume_bvh)
+            + self.surface_bvh.as_ref().map_or(0, cwbvh)
+            + self.volume_bvh.iter().map(|p| cwbvh(&p.bvh)).sum::<usize>()
     }
 }
