@@ -180,6 +180,18 @@ fn first_surface_spheres_leave_direct_light_to_the_splat() {
     assert_ne!(img(0.02, false), img(0.2, false));
 }
 
+/// A mirror standing beside the floor, which reflects the point light onto it (a caustic).
+const MIRROR: &str = r#"
+[materials.mirror]
+type = "mirror"
+albedo = 0.9
+[[shapes]]
+type = "quad"
+size = [8, 3]
+material = "mirror"
+transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
+"#;
+
 /// Caustic light: a point light's reflection in a mirror lights the floor (a smooth caustic,
 /// the light of a mirrored point light). Splatted (the forward rays' chain light -> mirror ->
 /// floor is specular) it has the expectation of the surface spheres' estimate at a small
@@ -190,16 +202,7 @@ fn caustic_splat_matches_the_gathered_caustic() {
         text(ORTHOGRAPHIC, false, "photons", 0.01).replace(
             "splat_to_camera = true",
             &format!("splat_to_camera = {splat}"),
-        ) + r#"
-[materials.mirror]
-type = "mirror"
-albedo = 0.9
-[[shapes]]
-type = "quad"
-size = [8, 3]
-material = "mirror"
-transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
-"#
+        ) + MIRROR
     };
     let (on, off) = (scene(&t(true), &[]), scene(&t(false), &[]));
     same_expectation("mirror caustic", (&on, 900), (&off, 1100), "", 0.1);
@@ -218,16 +221,6 @@ position = [-0.8, 1.0, 0.1]
 direction = [0.8, -1.0, -0.1]
 radius = 0.01
 power = 20.0
-"#;
-    const MIRROR: &str = r#"
-[materials.mirror]
-type = "mirror"
-albedo = 0.9
-[[shapes]]
-type = "quad"
-size = [8, 3]
-material = "mirror"
-transform = { rotate = [0, -90, 0], translate = [1.0, 1.5, 0] }
 "#;
     let img = |direct: &str, extra: &str, splat: Option<bool>| {
         let t = text(PERSPECTIVE, false, direct, 0.05) + extra;

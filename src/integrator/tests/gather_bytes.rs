@@ -1,41 +1,15 @@
 //! Memory of the gather structure per integration sphere on the real fog-cube scene (issue 9
 //! target: <= 64 bytes), counted from a real camera pass, not from constants.
 
-use std::path::Path;
-use std::sync::atomic::AtomicBool;
-
+use super::{shipped_scene as scene, untiled_pass};
 use crate::integrator::Integrator;
-use crate::integrator::camera_pass::{CameraJob, camera_pass};
 use crate::integrator::gather::{Gather, bytes_for};
-use crate::scene::{build, build_integrator, load};
 use crate::world::Scene;
-
-fn scene(file: &str, sets: &[&str]) -> (Scene, Integrator) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes")
-        .join(file);
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let loaded = load(&path, &sets).unwrap();
-    let scene = build(&loaded).unwrap();
-    let integrator = build_integrator(&loaded, &scene).unwrap();
-    (scene, integrator)
-}
 
 /// (bytes per sphere over all spheres, bytes per volume sphere of the volume part alone,
 /// volume spheres) of one untiled pass.
 fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) {
-    let never = AtomicBool::new(false);
-    let job = CameraJob {
-        seed: 1,
-        pass: 0,
-        radii: integrator.radii(0),
-        first_row: 0,
-        budget_bytes: usize::MAX,
-        light_layers: false,
-        stride: 1,
-    };
-    let (mut out, rows) = camera_pass(s, integrator, &job, &never).unwrap();
-    assert_eq!(rows, s.camera.resolution().1);
+    let mut out = untiled_pass(s, integrator, 1);
     let (surfaces, volumes) = (out.surfaces.len(), out.volumes.len());
     let predicted = bytes_for(&out);
     let g = Gather::from_output(&integrator.estimator, integrator.radii(0), &mut out);

@@ -2,15 +2,11 @@
 //! volume whose bounds it crosses exactly once, whichever part holds it, checked against a
 //! brute-force test of every volume's box on a real fog-cube pass of several parts.
 
-use std::path::Path;
-use std::sync::atomic::AtomicBool;
-
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
 
-use crate::integrator::camera_pass::{CameraJob, camera_pass};
+use super::{shipped_scene, untiled_pass};
 use crate::integrator::gather::Gather;
-use crate::scene::{build, build_integrator, load};
 
 /// Whether the segment `[o, o + d len]` meets the box `[lo, hi]` (slab test).
 fn meets(o: Vec3, d: Vec3, len: f32, lo: Vec3, hi: Vec3) -> bool {
@@ -26,25 +22,13 @@ fn meets(o: Vec3, d: Vec3, len: f32, lo: Vec3, hi: Vec3) -> bool {
 
 #[test]
 fn a_segment_meets_every_volume_it_crosses_once_whatever_its_part() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fog-cube.toml");
-    let loaded = load(&path, &["integrator.q=0.05".to_string()]).unwrap();
-    let scene = build(&loaded).unwrap();
-    let integrator = build_integrator(&loaded, &scene).unwrap();
-    let job = CameraJob {
-        seed: 2,
-        pass: 0,
-        radii: integrator.radii(0),
-        first_row: 0,
-        budget_bytes: usize::MAX,
-        light_layers: false,
-        stride: 1,
-    };
-    let never = AtomicBool::new(false);
-    let (mut out, _) = camera_pass(&scene, &integrator, &job, &never).unwrap();
-    let g = Gather::from_output(&integrator.estimator, job.radii, &mut out);
+    let (scene, integrator) = shipped_scene("fog-cube.toml", &["integrator.q=0.05"]);
+    let mut out = untiled_pass(&scene, &integrator, 2);
+    let radii = integrator.radii(0);
+    let g = Gather::from_output(&integrator.estimator, radii, &mut out);
     let n = g.volumes.len();
     assert!(n > 4 << 16, "{n} volumes: fewer than 5 parts' worth");
-    let radius = job.radii.bound();
+    let radius = radii.bound();
     let boxes: Vec<(Vec3, Vec3)> = g
         .volumes
         .iter()
