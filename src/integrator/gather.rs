@@ -117,9 +117,10 @@ fn volume_parts(aabbs: &[Aabb], volumes: &[VolumeRecord]) -> (Vec<VolumePart>, V
     while groups.len() < parts {
         groups = groups.into_iter().flat_map(|g| halve(aabbs, g)).collect();
     }
+    // Collected in the groups' order, whichever thread built which part.
     let built: Vec<(CwBvh, Vec<VolumeRecord>)> = groups
         .par_iter()
-        .map(|g| {
+        .filter_map(|g| {
             let boxes: Vec<Aabb> = g.iter().map(|&i| aabbs[i as usize]).collect();
             let part: Vec<VolumeRecord> = g.iter().map(|&i| volumes[i as usize]).collect();
             build_cwbvh(&boxes).map(|mut bvh| {
@@ -127,9 +128,6 @@ fn volume_parts(aabbs: &[Aabb], volumes: &[VolumeRecord]) -> (Vec<VolumePart>, V
                 (bvh, records)
             })
         })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .flatten()
         .collect();
     let mut leaf = Vec::with_capacity(volumes.len());
     let mut out = Vec::with_capacity(built.len());
