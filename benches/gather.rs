@@ -84,7 +84,7 @@ fn build(n: usize, r: Records) -> Gather {
         &spheres,
         Radii::one(radius(n)),
         Vec::new(),
-        r.segments,
+        (r.segments, Default::default()),
         r.volumes,
         r.throughputs,
         BINS,

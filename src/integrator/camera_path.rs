@@ -5,6 +5,7 @@
 use glam::Vec3;
 use rand::Rng as _;
 
+use super::boundary::{Entered, Planes};
 use super::by_light::ByLight;
 use super::direct::{Part, Segment};
 use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
@@ -87,6 +88,9 @@ pub struct CameraPath<'a> {
     /// bounce or a medium scattering. A sensor path starts with its sensor and the density of
     /// its cosine-distributed direction.
     pub glossy_from: Option<(Vec3, f32)>,
+    /// The surface the path last left or crossed, since the camera or its last medium
+    /// scattering: the start plane of its next medium segment (`boundary`).
+    entered: Option<Entered>,
 }
 
 impl<'a> CameraPath<'a> {
@@ -111,6 +115,7 @@ impl<'a> CameraPath<'a> {
             radii: Radii::one(0.0),
             primary: true,
             glossy_from: None,
+            entered: None,
         }
     }
 
@@ -129,13 +134,13 @@ impl<'a> CameraPath<'a> {
     /// first sub-step of a sphere walk) costs nothing.
     /// `depth` is the segment's length in optical depth at density 1 (`along.depth(len)`, the
     /// length itself in a uniform medium): the estimator walks in it, and each volume is
-    /// recorded at its distance along the ray.
+    /// recorded at its distance along the ray. `end` is the surface the segment ends on.
     #[allow(clippy::too_many_arguments)]
     fn leave_volumes<E: VolumeEstimator>(
         &mut self,
         e: &E,
         m: u32,
-        ray: &Ray,
+        (ray, end): (&Ray, Option<&Hit>),
         (depth, len, along): (f32, f32, &Along),
         (mix, track): (&Mixture, Option<&Tracker>),
         rng: &mut Rng,
@@ -157,9 +162,12 @@ impl<'a> CameraPath<'a> {
             first_extinction: self.first_extinction(),
         };
         let (out, pixel, w, n) = (&mut *self.out, self.pixel, &self.w, self.n);
+        let (scene, entered) = (self.scene, self.entered.as_ref());
         let mut segment = None;
+        // Whether the segment's planes are in the pass's table yet (`boundary::PlaneTable`).
+        let mut tabled = false;
         e.camera_segment(&cam, rng, |s, scale| {
-            let segment = *segment.get_or_insert_with(|| {
+            let (segment, planes) = *segment.get_or_insert_with(|| {
                 let throughput = out.throughputs.insert(w.as_slice(n));
                 out.segments.push(SegmentRecord {
                     origin: ray.o,
@@ -169,10 +177,26 @@ impl<'a> CameraPath<'a> {
                     medium: m as u16,
                     classes,
                 });
-                out.segments.len() as u32 - 1
+                let planes = Planes::of_segment(scene, m, ray, (entered, end), cam.radius);
+                (out.segments.len() as u32 - 1, planes)
             });
-            // Spheres come at their optical depth, cylinder pieces at their distances.
-            let s = if E::PIECES { s } else { along.distance(s) }.min(len);
+            // Spheres come at their optical depth, cylinder pieces at their distances; a
+            // sphere that may reach through a plane of its segment carries its scale negated
+            // (`VolumeRecord::near_boundary`) and has the planes tabled.
+            let (s, scale) = if E::PIECES {
+                (s.min(len), scale)
+            } else {
+                let s = along.distance(s).min(len);
+                if planes.near(s, ray.d, cam.radius) {
+                    if !tabled {
+                        out.planes.push(segment, planes);
+                        tabled = true;
+                    }
+                    (s, -scale)
+                } else {
+                    (s, scale)
+                }
+            };
             out.volumes.push(VolumeRecord { segment, s, scale });
         })
         .at_distance(along, len)
@@ -220,7 +244,13 @@ impl<'a> CameraPath<'a> {
 
 impl PathStep for CameraPath<'_> {
     /// One straight camera segment of length `len` inside medium `m` (method notes 2-5).
-    fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
+    fn medium(
+        &mut self,
+        m: u32,
+        ray: &Ray,
+        (len, hit): (f32, Option<&Hit>),
+        rng: &mut Rng,
+    ) -> MediumStep {
         let mix = self.mixture(m);
         let scene = self.scene;
         let med = &scene.media[m as usize];
@@ -262,16 +292,16 @@ impl PathStep for CameraPath<'_> {
         }
         let end = match &integrator.estimator {
             Estimator::Spheres(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
+                self.leave_volumes(e, m, (ray, hit), (depth, len, &along), (&mix, track), rng)
             }
             Estimator::Cylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
+                self.leave_volumes(e, m, (ray, hit), (depth, len, &along), (&mix, track), rng)
             }
             Estimator::TruncatedCylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
+                self.leave_volumes(e, m, (ray, hit), (depth, len, &along), (&mix, track), rng)
             }
             Estimator::LongCylinder(e) => {
-                self.leave_volumes(e, m, ray, (depth, len, &along), (&mix, track), rng)
+                self.leave_volumes(e, m, (ray, hit), (depth, len, &along), (&mix, track), rng)
             }
         };
         // An endless segment (a medium without a boundary ahead) keeps the walk's outcome.
@@ -289,6 +319,7 @@ impl PathStep for CameraPath<'_> {
         self.sees_emitters = false;
         self.glossy_from = None;
         self.primary = false;
+        self.entered = None;
         let p = ray.o + ray.d * t;
         let med = &self.scene.media[m as usize];
         let ch = self.integrator.settings.channels();
@@ -325,6 +356,7 @@ impl PathStep for CameraPath<'_> {
             }
         }
         let Some(mat_id) = shape.material else {
+            self.entered = Some(Entered::new(hit, ray.d, true));
             return SurfaceStep::Null;
         };
         let material = &scene.materials[mat_id as usize];
@@ -370,6 +402,7 @@ impl PathStep for CameraPath<'_> {
             return SurfaceStep::Stop;
         }
         self.primary = false;
+        self.entered = Some(Entered::new(hit, s.wi, false));
         SurfaceStep::Scattered(s.wi)
     }
 

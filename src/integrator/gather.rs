@@ -18,6 +18,7 @@ use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 use obvhs::ray::Ray as BvhRay;
 
 use super::Radii;
+use super::boundary::PlaneTable;
 use super::estimator::Estimator;
 use super::record::{CameraOutput, SegmentRecord, SurfaceRecord, VolumeRecord};
 
@@ -37,6 +38,8 @@ pub struct Gather {
     /// Surface spheres, in BVH leaf order.
     pub surfaces: Vec<SurfaceRecord>,
     pub segments: Vec<SegmentRecord>,
+    /// The bounding planes of the segments with a sphere near one (`boundary`).
+    pub planes: PlaneTable,
     /// Volumes, in BVH leaf order.
     pub volumes: Vec<VolumeRecord>,
     /// Throughput spectra of `bins` floats, addressed by the records' `throughput` indices.
@@ -161,7 +164,10 @@ fn halve<'a>(aabbs: &[Aabb], ids: &'a mut [u32]) -> [&'a mut [u32]; 2] {
 
 /// Renumbers the segments in the order the (leaf-ordered) volumes first use them, so that a
 /// query's volumes read neighbouring segments too.
-fn segment_order(segments: &mut Vec<SegmentRecord>, volumes: &mut [VolumeRecord]) {
+fn segment_order(
+    (segments, planes): (&mut Vec<SegmentRecord>, &mut PlaneTable),
+    volumes: &mut [VolumeRecord],
+) {
     let mut new_index = vec![u32::MAX; segments.len()];
     let mut ordered = Vec::with_capacity(segments.len());
     for v in volumes.iter_mut() {
@@ -174,6 +180,7 @@ fn segment_order(segments: &mut Vec<SegmentRecord>, volumes: &mut [VolumeRecord]
     }
     // A segment without volumes (the camera pass records none) would be dropped here.
     *segments = ordered;
+    planes.renumber(&new_index);
 }
 
 /// Memory the gather structure built from `out` will hold (`Gather::bytes()`, with the BVHs at
@@ -182,6 +189,7 @@ pub fn bytes_for(out: &CameraOutput) -> usize {
     let prims = out.surfaces.len() + out.volumes.len();
     out.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
         + out.segments.len() * std::mem::size_of::<SegmentRecord>()
+        + out.planes.bytes()
         + out.volumes.len() * std::mem::size_of::<VolumeRecord>()
         + out.throughputs.data_bytes()
         + prims * BVH_BYTES_PER_PRIM
@@ -212,7 +220,7 @@ impl Gather {
         estimator: &Estimator,
         radii: Radii,
         mut surfaces: Vec<SurfaceRecord>,
-        mut segments: Vec<SegmentRecord>,
+        (mut segments, mut planes): (Vec<SegmentRecord>, PlaneTable),
         mut volumes: Vec<VolumeRecord>,
         throughputs: Vec<f32>,
         bins: usize,
@@ -243,11 +251,12 @@ impl Gather {
             surfaces = leaf_order(bvh, &surfaces);
         }
         volumes = leaf_volumes;
-        segment_order(&mut segments, &mut volumes);
+        segment_order((&mut segments, &mut planes), &mut volumes);
         Self {
             radii,
             surfaces,
             segments,
+            planes,
             volumes,
             throughputs,
             bins,
@@ -264,7 +273,10 @@ impl Gather {
             estimator,
             radii,
             std::mem::take(&mut out.surfaces),
-            std::mem::take(&mut out.segments),
+            (
+                std::mem::take(&mut out.segments),
+                std::mem::take(&mut out.planes),
+            ),
             std::mem::take(&mut out.volumes),
             table.into_data(),
             bins,
@@ -292,6 +304,7 @@ impl Gather {
         let records = CameraOutput {
             surfaces: std::mem::take(&mut out.surfaces),
             segments: std::mem::take(&mut out.segments),
+            planes: std::mem::take(&mut out.planes),
             volumes: std::mem::take(&mut out.volumes),
             throughputs: std::mem::take(&mut out.throughputs),
             ..CameraOutput::default()
@@ -381,6 +394,7 @@ impl Gather {
         };
         self.surfaces.len() * std::mem::size_of::<SurfaceRecord>()
             + self.segments.len() * std::mem::size_of::<SegmentRecord>()
+            + self.planes.bytes()
             + self.volumes.len() * std::mem::size_of::<VolumeRecord>()
             + self.throughputs.len() * 4
             + self.surface_bvh.as_ref().map_or(0, cwbvh)

@@ -2,6 +2,7 @@
 //! info`, the check before a render starts and the refusal of a gather budget that cannot hold
 //! one camera path's records. Figures are in binary units (GiB = 2^30 bytes) everywhere.
 
+use super::boundary::Planes;
 use super::gather::{BUILD_BYTES_PER_PRIM, BVH_BYTES_PER_PRIM};
 use super::record::{SegmentRecord, SurfaceRecord, VolumeRecord};
 use super::settings::{IntegratorDesc, VolumeKind};
@@ -11,8 +12,10 @@ use super::settings::{IntegratorDesc, VolumeKind};
 /// `gather::peak_bytes_for`, the tiling rule, counts).
 pub const GATHER_RECORD_BYTES: f64 =
     (std::mem::size_of::<VolumeRecord>() + BVH_BYTES_PER_PRIM + BUILD_BYTES_PER_PRIM) as f64;
-/// Bytes of the segment record that a path's volumes share.
-const PATH_BYTES: f64 = std::mem::size_of::<SegmentRecord>() as f64;
+/// Bytes of the segment record that a path's volumes share, and of its planes (an upper
+/// estimate: only segments with a sphere near a plane keep them).
+const PATH_BYTES: f64 =
+    (std::mem::size_of::<SegmentRecord>() + std::mem::size_of::<(u32, Planes)>()) as f64;
 const SURFACE_BYTES: f64 =
     (std::mem::size_of::<SurfaceRecord>() + BVH_BYTES_PER_PRIM + BUILD_BYTES_PER_PRIM) as f64;
 /// Film bytes per pixel and bin: exact i128 sums of the two layers and of squares (48), the

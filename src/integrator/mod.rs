@@ -6,6 +6,7 @@
 //! The runtime scene (`world::Scene`) holds the content it renders.
 
 pub mod auto;
+pub mod boundary;
 mod by_light;
 mod camera_pass;
 mod camera_path;

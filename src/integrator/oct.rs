@@ -19,6 +19,9 @@ fn quantise(x: f32) -> u32 {
 }
 
 impl Oct {
+    /// A placeholder for an absent direction (it decodes to some unit vector).
+    pub const ZERO: Oct = Oct(0);
+
     /// Encodes a unit vector (any non-zero vector is normalised by the projection).
     pub fn encode(v: Vec3) -> Self {
         let l1 = v.x.abs() + v.y.abs() + v.z.abs();

@@ -38,8 +38,9 @@ pub enum SurfaceStep {
 
 /// What one kind of path does at each step.
 pub trait PathStep {
-    /// The segment of length `len` along `ray` inside medium `m`.
-    fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep;
+    /// The segment along `ray` inside medium `m`: `seg` is its length and the surface it ends
+    /// on (None: the world's edge).
+    fn medium(&mut self, m: u32, ray: &Ray, seg: (f32, Option<&Hit>), rng: &mut Rng) -> MediumStep;
     /// A real scattering at `t` along `ray` in medium `m`, the path's `depth`-th real event:
     /// the ray that goes on, or None when the path ends there (Russian roulette).
     fn scatter(&mut self, m: u32, ray: &Ray, t: f32, depth: u32, rng: &mut Rng) -> Option<Ray>;
@@ -70,7 +71,7 @@ pub fn trace(
                     Some(h) => h.t,
                     None => scene.world_exit(&ray),
                 };
-                match path.medium(m, &ray, len, rng) {
+                match path.medium(m, &ray, (len, hit.as_ref()), rng) {
                     MediumStep::Reached => {}
                     MediumStep::Ended => return,
                     MediumStep::Scattered(t) => {

@@ -4,6 +4,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::boundary::PlaneTable;
 use super::oct::Oct;
 use super::throughput::ThroughputTable;
 use crate::spectrum::Spectrum;
@@ -64,10 +65,27 @@ pub struct VolumeRecord {
     pub segment: u32,
     /// Distance along the segment (spheres) or where the piece ends along it (cylinders).
     pub s: f32,
-    /// Spheres: `q / pdf_mix(s)`, scaled as `MixEval` (see `estimator::sphere_weight`);
-    /// cylinders: where the piece starts along the segment (cylinders are cut into pieces
-    /// `[scale, s]`, see `estimator::cylinder::leave_pieces`).
+    /// Spheres: `q / pdf_mix(s)` (> 0), scaled as `MixEval` (see `estimator::sphere_weight`),
+    /// NEGATED for a sphere within the pass's largest radius of a plane of its segment
+    /// (`boundary`; [`VolumeRecord::sphere_scale`], [`VolumeRecord::near_boundary`]): the one
+    /// bit the gather reads before it looks the planes up, so that the hot loop touches them
+    /// only for such spheres. Cylinders: where the piece starts along the segment (cylinders
+    /// are cut into pieces `[scale, s]`, see `estimator::cylinder::leave_pieces`).
     pub scale: f32,
+}
+
+impl VolumeRecord {
+    /// A sphere's scale without its boundary flag.
+    #[inline]
+    pub fn sphere_scale(&self) -> f32 {
+        self.scale.abs()
+    }
+
+    /// Whether a sphere may reach through a plane of its segment (`boundary::Planes`).
+    #[inline]
+    pub fn near_boundary(&self) -> bool {
+        self.scale.is_sign_negative()
+    }
 }
 
 /// Light a camera path found without the light pass: an emitter it saw, or a next-event
@@ -89,6 +107,8 @@ pub struct CameraOutput {
     pub surfaces: Vec<SurfaceRecord>,
     /// Camera segments in media that left volumes; `volumes` point into it.
     pub segments: Vec<SegmentRecord>,
+    /// The bounding planes of the segments with a sphere near one (`boundary`).
+    pub planes: PlaneTable,
     pub volumes: Vec<VolumeRecord>,
     /// Distinct camera throughputs, shared by the records.
     pub throughputs: ThroughputTable,
@@ -127,6 +147,7 @@ impl CameraOutput {
         other.volumes.iter_mut().for_each(|v| v.segment += base);
         self.surfaces.append(&mut other.surfaces);
         self.segments.append(&mut other.segments);
+        self.planes.append(std::mem::take(&mut other.planes), base);
         self.volumes.append(&mut other.volumes);
         self.direct.append(&mut other.direct);
         self.nee_medium.append(&mut other.nee_medium);

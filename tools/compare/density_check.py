@@ -47,14 +47,14 @@ pass share forward rays; docs/photometry.md), flagged in the table; give 2 or mo
 of different seeds (the `brume` subcommand) for an honest one. brume's EXR must be radiometric
 (film.units, the default): Mitsuba's images are in brume's radiometric units (mitsuba_scene.py).
 
-Reading the table: brume's gathered light is blurred over its integration radius. On
-height-fog-chromatic the fog seen within a few radii of the floor read 2-4 % low at the automatic
-radius (likely the balls that reach through the floor, where no forward ray travels); that is not
-the density field (the same scene with a uniform medium shows it against Mitsuba's homogeneous
-medium) and it shrank at a quarter of the radius (`--set integrator.radius=...`, the `brume`
-subcommand's --set). Check a suspicious region at a smaller radius before blaming the field. z assumes the standard errors
-are exact: with J brume renders their estimate has J - 1 degrees of freedom (|z| up to about 3
-is within the spread of 4 renders).
+Reading the table: brume's gathered light is blurred over its integration radius. Before its
+spheres were cut at the surfaces their camera segment ends on (docs/media.md, "Spheres at
+surfaces"), the fog seen within a few radii of the floor of height-fog-chromatic read 1.5-2 % low
+at the automatic radius, from the balls that reached through the floor; now 0.1-0.2 % is left,
+the same at a quarter of the radius. Check a suspicious region at a smaller radius
+(`--set integrator.radius=...`, the `brume` subcommand's --set) before blaming the field.
+z assumes the standard errors are exact: with J brume renders their estimate has J - 1 degrees
+of freedom (|z| up to about 3 is within the spread of 4 renders).
 
 Example (the two scenes of this check):
   export DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so

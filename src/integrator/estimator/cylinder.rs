@@ -16,6 +16,7 @@ use super::{
     CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds, chord_integral, panels_for,
     times_phase,
 };
+use crate::integrator::boundary::PlaneTable;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{Medium, Mixture, WalkEnd, sample_extinction};
 use crate::spectrum::Spectrum;
@@ -47,7 +48,7 @@ impl VolumeEstimator for Cylinder {
     fn contribution(
         &self,
         f: &ForwardSegment,
-        seg: &SegmentRecord,
+        (seg, _): (&SegmentRecord, &PlaneTable),
         v: &VolumeRecord,
         _w: &[f32],
         med: &Medium,

@@ -16,6 +16,7 @@ use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, segment_cylinder,
     times_phase,
 };
+use crate::integrator::boundary::PlaneTable;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{Medium, WalkEnd};
 use crate::spectrum::Spectrum;
@@ -47,7 +48,7 @@ impl VolumeEstimator for LongCylinder {
     fn contribution(
         &self,
         f: &ForwardSegment,
-        seg: &SegmentRecord,
+        (seg, _): (&SegmentRecord, &PlaneTable),
         v: &VolumeRecord,
         _w: &[f32],
         med: &Medium,

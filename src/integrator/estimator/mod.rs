@@ -32,6 +32,7 @@ use glam::Vec3;
 use obvhs::aabb::Aabb;
 use rand::Rng;
 
+use super::boundary::PlaneTable;
 use super::record::{SegmentRecord, VolumeRecord};
 use super::settings::{IntegratorDesc, VolumeKind};
 use crate::medium::{Along, ForwardFlight, Medium, MediumError, Mixture, Tracker, WalkEnd};
@@ -121,13 +122,13 @@ pub trait VolumeEstimator {
     /// The box the gather structure indexes one volume by.
     fn bounds(&self, seg: &SegmentRecord, v: &VolumeRecord, radius: f32) -> Aabb;
 
-    /// What forward segment `f` adds to volume `v` of camera segment `seg` in medium `med`, per
-    /// bin, before the camera throughput `w` (which truncated cylinders also read); None when it
-    /// misses the volume.
+    /// What forward segment `f` adds to volume `v` of camera segment `seg` (with the pass's
+    /// table of bounding planes, which spheres near them read) in medium `med`, per bin, before the camera
+    /// throughput `w` (which truncated cylinders also read); None when it misses the volume.
     fn contribution(
         &self,
         f: &ForwardSegment,
-        seg: &SegmentRecord,
+        seg: (&SegmentRecord, &PlaneTable),
         v: &VolumeRecord,
         w: &[f32],
         med: &Medium,

@@ -2,7 +2,8 @@
 //! segment with the multiple-sphere sub-steps of `medium::MultiSphereWalk` (q = 1 is the single
 //! sphere at the extinction), leaving one sphere per sub-step; a forward segment crossing a
 //! sphere adds `f Phi_l * chord / ((4/3) pi R^3)` times the sphere's per-bin weight
-//! `q ss_l e^{-st_l s} / pdf_mix(s)`, which the record keeps in factored form.
+//! `q ss_l e^{-st_l s} / pdf_mix(s)`, which the record keeps in factored form. A sphere that
+//! reaches through a surface its segment is bounded by is cut by its plane (`boundary`).
 
 use glam::Vec3;
 use obvhs::aabb::Aabb;
@@ -10,6 +11,7 @@ use rand::Rng;
 use std::f32::consts::PI;
 
 use super::{CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds};
+use crate::integrator::boundary::PlaneTable;
 use crate::integrator::exp::exp_nonpositive;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::medium::{Medium, MediumError, MultiSphereWalk, WalkEnd, relative_extinction};
@@ -75,13 +77,30 @@ impl VolumeEstimator for Spheres {
     fn contribution(
         &self,
         f: &ForwardSegment,
-        seg: &SegmentRecord,
+        (seg, planes): (&SegmentRecord, &PlaneTable),
         v: &VolumeRecord,
         _w: &[f32],
         med: &Medium,
         radius: f32,
     ) -> Option<Spectrum> {
-        let chord = segment_sphere(f.o, f.d, f.len, seg.at(v.s), radius)?;
+        let mut chord = segment_sphere(f.o, f.d, f.len, seg.at(v.s), radius)?;
+        // Near the surfaces its camera segment is bounded by, the sphere is the ball cut by
+        // their planes (`boundary`): the chord inside, over the cut ball's volume.
+        let mut fraction = 1.0;
+        if v.near_boundary() {
+            let (lam_in, lam_out, kept) = planes.of(v.segment).clip(
+                (seg.origin, seg.dir, v.s),
+                (f.o, f.d),
+                (chord.lam_in, chord.lam_out),
+                radius,
+            )?;
+            chord = SphereChord {
+                lam_in,
+                lam_out,
+                full: chord.full && kept == 1.0,
+            };
+            fraction = kept;
+        }
         let at = f.flux_at(chord.mid());
         let x = self
             .extinction
@@ -96,10 +115,10 @@ impl VolumeEstimator for Spheres {
         // The phase function only once the exact test hit: about half the box candidates miss.
         let cos = -f.d.dot(seg.dir);
         if med.phase.varies_per_bin() {
-            let k = track_length_density(&chord, radius);
+            let k = track_length_density(&chord, radius) / fraction;
             return Some(at * sphere_weight(med, x, (u, v), k) * med.phase_bins(cos));
         }
-        let k = med.phase.eval(cos) * track_length_density(&chord, radius);
+        let k = med.phase.eval(cos) * track_length_density(&chord, radius) / fraction;
         Some(at * sphere_weight(med, x, (u, v), k))
     }
 }
@@ -116,7 +135,7 @@ pub fn sphere_weight(
     (u, v): (f32, &VolumeRecord),
     k: f32,
 ) -> Spectrum {
-    let mut w = med.sigma_s * (k * v.scale);
+    let mut w = med.sigma_s * (k * v.sphere_scale());
     if let Some(x) = x {
         // The walk's `atten(x, s)` for the finite distances spheres have, in fixed blocks of 8
         // bins that the compiler vectorises (lanes past the medium's bins multiply zeros by 1).

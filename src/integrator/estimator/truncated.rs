@@ -14,6 +14,7 @@ use super::{
     CameraAxis, CameraSegment, CylinderChord, ForwardSegment, VolumeEstimator, chord_integral,
     panels_for, segment_cylinder, times_phase,
 };
+use crate::integrator::boundary::PlaneTable;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
 use crate::integrator::settings::Channels;
 use crate::medium::{Medium, Mixture, WalkEnd, sample_extinction};
@@ -61,7 +62,7 @@ impl VolumeEstimator for TruncatedCylinder {
     fn contribution(
         &self,
         f: &ForwardSegment,
-        seg: &SegmentRecord,
+        (seg, _): (&SegmentRecord, &PlaneTable),
         v: &VolumeRecord,
         w: &[f32],
         med: &Medium,

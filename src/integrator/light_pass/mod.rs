@@ -301,7 +301,13 @@ impl ForwardTracer<'_> {
 }
 
 impl PathStep for ForwardTracer<'_> {
-    fn medium(&mut self, m: u32, ray: &Ray, len: f32, rng: &mut Rng) -> MediumStep {
+    fn medium(
+        &mut self,
+        m: u32,
+        ray: &Ray,
+        (len, _): (f32, Option<&Hit>),
+        rng: &mut Rng,
+    ) -> MediumStep {
         let med = &self.scene.media[m as usize];
         let floor = self.integrator.settings.channel_floor;
         // The flight runs in optical depth at density 1 (the distance in a uniform medium) and

@@ -92,6 +92,7 @@ impl ForwardTracer<'_> {
             along: flight.map_or(&IDENTITY, |(_, along)| along),
         };
         let mut hits = 0u64;
+        let planes = &gather.planes;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
             hits += 1;
             if seg.classes & class == 0 || seg.classes & skip_primary != 0 {
@@ -104,7 +105,7 @@ impl ForwardTracer<'_> {
             // The record's own medium scatters the light towards the camera.
             let med = &scene.media[seg.medium as usize];
             let w = gather.throughput(seg.throughput);
-            if let Some(factor) = e.contribution(&fwd, seg, rec, w, med, radius) {
+            if let Some(factor) = e.contribution(&fwd, (seg, planes), rec, w, med, radius) {
                 target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
             }
         });

@@ -19,7 +19,7 @@ fn bytes_per_sphere((s, integrator): &(Scene, Integrator)) -> (f64, f64, usize) 
         &integrator.estimator,
         g.radii,
         Vec::new(),
-        g.segments.clone(),
+        (g.segments.clone(), g.planes.clone()),
         g.volumes.clone(),
         g.throughputs.clone(),
         g.bins,
