@@ -177,7 +177,12 @@ impl<'a> CameraPath<'a> {
                     medium: m as u16,
                     classes,
                 });
-                let planes = Planes::of_segment(scene, m, ray, (entered, end), cam.radius);
+                // Only spheres are cut (cylinders never read the planes, nor pay for them).
+                let planes = if E::PIECES {
+                    Planes::NONE
+                } else {
+                    Planes::of_segment(scene, m, ray, (entered, end), cam.radius)
+                };
                 (out.segments.len() as u32 - 1, planes)
             });
             // Spheres come at their optical depth, cylinder pieces at their distances; a
