@@ -123,3 +123,68 @@ def test_surface_layer_integrator_sees_the_wall_through_the_fog():
     gap["sensor"]["near_clip"] = 1e-6
     wall = np.asarray(mi.render(mi.load_dict(gap), seed=2)).mean()
     assert abs(layer / (np.exp(-1.0) * wall) - 1.0) < 0.05
+
+
+def test_mitsuba_images_are_in_brumes_units():
+    """A grey Lambert floor under a directional light: its radiance has a closed form,
+    albedo / pi * E cos(theta) times the light's binned spectrum, and so has its Y against the
+    CIE 1931 table brume ships (spectra/cie1931_2deg.csv), normalised so that a unit radiance
+    has Y = 1. brume renders that value (the engine's tests); Mitsuba's own Y normalisation is
+    0.1 % off it (`mitsuba_y_excess`), which the translation removes. What noise is left is
+    Mitsuba's wavelength sampling: 4.2M samples (128 x 128 pixels, 256 spp) put the image's
+    mean within 5e-5 to 6e-5 of the closed form (seeds 1-4), so 3e-4 is a bound of several sigma
+    that the uncorrected 9.4e-4 fails. Needs the vectorised variant (libLLVM)."""
+    mi = pytest.importorskip("mitsuba")
+    try:
+        mi.set_variant("llvm_ad_spectral")
+    except Exception as e:  # no libLLVM (DRJIT_LIBLLVM_PATH): Mitsuba's JIT is unavailable
+        pytest.skip(f"llvm_ad_spectral: {e}")
+    import mitsuba_scene
+
+    assert 1.0009 < mitsuba_scene.mitsuba_y_excess(mi) < 1.0011
+    scene = """
+[film]
+bins = 4
+[camera]
+type = "perspective"
+width = 128
+height = 128
+position = [0.0, 2.0, 1.0]
+look_at = [0.0, 0.0, 0.9]
+up = [0.0, 0.0, -1.0]
+fov = 10.0
+[materials.grey]
+type = "lambert"
+albedo = 0.4
+[[shapes]]
+type = "quad"
+size = [8.0, 6.0]
+material = "grey"
+transform = { rotate = [-90.0, 0.0, 0.0], translate = [0.0, 0.0, 1.0] }
+[[lights]]
+type = "directional"
+direction = [0.5, -0.45, -0.74]
+irradiance = 5.0
+spectrum = "D65"
+"""
+    import tomllib
+
+    desc = tomllib.loads(scene)
+    d = mitsuba_scene.load(ROOT / "scenes" / "x.toml", 256, desc=desc)
+    img = np.asarray(mi.render(mi.load_dict(d), seed=1), dtype=np.float64)
+    y_img = (img @ np.array([0.2126, 0.7152, 0.0722])).mean()
+
+    grid = mitsuba_scene.Grid(desc["film"])
+    shape = mitsuba_scene.light_spectrum(desc, ROOT / "scenes", "D65", grid)
+    cmf = np.loadtxt(ROOT / "spectra" / "cie1931_2deg.csv", delimiter=",", comments="#", skiprows=4)
+    lam, ybar = cmf[:, 0], cmf[:, 2]
+    fine = np.linspace(grid.lo, grid.hi, 400001)
+    yf = np.interp(fine, lam, ybar)
+    per_bin = [np.trapezoid(yf[(fine >= a) & (fine <= b)], fine[(fine >= a) & (fine <= b)])
+               for a, b in zip(grid.edges[:-1], grid.edges[1:])]
+    whole = np.arange(lam[0], lam[-1] + 0.5, 1.0)
+    norm = np.trapezoid(np.interp(whole, lam, ybar), whole)
+    d_ = np.array([0.5, -0.45, -0.74])
+    cos = 0.45 / np.linalg.norm(d_)
+    y_exact = 0.4 / np.pi * 5.0 * cos * float(np.dot(shape, per_bin)) / norm
+    assert abs(y_img / y_exact - 1.0) < 3e-4, (y_img, y_exact)

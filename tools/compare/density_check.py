@@ -50,8 +50,10 @@ of different seeds (the `brume` subcommand) for an honest one. brume's EXR must 
 Reading the table: brume's gathered light is blurred over its integration radius. Before its
 spheres were cut at the surfaces their camera segment ends on (docs/media.md, "Spheres at
 surfaces"), the fog seen within a few radii of the floor of height-fog-chromatic read 1.5-2 % low
-at the automatic radius, from the balls that reached through the floor; now 0.1-0.2 % is left,
-the same at a quarter of the radius. Check a suspicious region at a smaller radius
+at the automatic radius, from the balls that reached through the floor. What is left is the
+blur itself, where the image changes fastest (0.1 % on the surfaces beside the fog's silhouette,
+a few tenths of a percent in the blue channel at the fog's edge; docs/media.md).
+Check a suspicious region at a smaller radius
 (`--set integrator.radius=...`, the `brume` subcommand's --set) before blaming the field.
 z assumes the standard errors are exact: with J brume renders their estimate has J - 1 degrees
 of freedom (|z| up to about 3 is within the spread of 4 renders).

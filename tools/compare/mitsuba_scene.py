@@ -29,8 +29,13 @@ Mirrored exactly:
   already scaled to brume's radiometric units. Surfaces are grey and media are constant within
   each bin, so every radiance in the scene is constant within each bin too, and Mitsuba's
   continuous integration of these steps against the CIE 1931 functions equals brume's per-bin
-  weights; both normalise Y so that a constant radiance of 1 has Y = 1: the two images should
-  agree with a scale k = 1 (compare.py fits k and reports it as a check).
+  weights. brume normalises Y so that a constant radiance of 1 has Y = 1 (its CIE 1931 table's
+  integral of y-bar, 106.857 nm); Mitsuba 3 divides by 106.7503 nm instead
+  (`MI_CIE_Y_NORMALIZATION`), which makes its images 0.100 % brighter than its own table's
+  integral says (measured on a Lambert floor under a directional light against the closed form:
+  brume within 2e-5 of it, Mitsuba 0.094 % above before this correction). So every light's
+  emission is divided by `mitsuba_y_excess` (1.0010, computed from Mitsuba's own tables), and
+  the two images should agree with a scale k = 1 (compare.py fits k and reports it as a check).
 - Spot lights: brume's `power` is the total flux; Mitsuba's `intensity` is W/sr on the axis, so
   intensity = power / (solid-angle integral of brume's profile), with brume's profile (1 inside
   angle - soft_edge, falling linearly in cos(theta) to 0 at angle). With spot_profile="exact"
@@ -177,6 +182,18 @@ def light_spectrum(desc: dict, base: Path, ref, grid: Grid) -> np.ndarray:
 
 # Mitsuba's spectral variants sample wavelengths over the CIE tables' range, 360-830 nm.
 _MITSUBA_LAMBDA = (360.0, 830.0)
+
+
+def mitsuba_y_excess(mi) -> float:
+    """Y of a unit spectrum in Mitsuba 3's spectral variants: its CIE 1931 y-bar integrated over
+    its tables' range (360-830 nm) times its `MI_CIE_Y_NORMALIZATION`. Mitsuba's constant is
+    1 / 106.7503 while its table integrates to 106.857, so this is 1.0010, not 1: a unit radiance
+    renders to Y = 1.0010 in Mitsuba and to 1 in brume. The variant must be set (any: scalar or
+    vectorised). Mitsuba's table is piecewise linear between whole nanometres, so the trapezoid
+    rule on them is its exact integral."""
+    lam = np.arange(mi.MI_CIE_MIN, mi.MI_CIE_MAX + 0.5, 1.0)
+    y = np.array([np.ravel(np.asarray(mi.cie1931_y(float(x)), dtype=np.float64))[0] for x in lam])
+    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(lam)) * mi.MI_CIE_Y_NORMALIZATION)
 
 
 def irregular(bins: np.ndarray, grid: Grid, scale: float, outside: str = "zero") -> dict:
@@ -560,8 +577,12 @@ def load(
         d[f"shape{i}"] = shape
 
     T = mi.ScalarTransform4f
+    # Mitsuba's images would be 0.1 % brighter than brume's for the same radiance (its Y
+    # normalisation, `mitsuba_y_excess`): its lights emit that much less instead.
+    y_excess = mitsuba_y_excess(mi)
     for i, l in enumerate(desc.get("lights", [])):
         shape = density_media.only_bins(light_spectrum(desc, base, l.get("spectrum"), grid), bins)
+        shape = shape / y_excess
         kind = l["type"]
         if kind == "directional":
             em = {
