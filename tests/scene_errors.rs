@@ -74,6 +74,25 @@ fn negative_width_is_rejected() {
     assert_at(&e, 3, "camera.width");
 }
 
+/// The radius schedule's keys: a schedule named beside a progressive alpha, and a consistent
+/// schedule that would never wait.
+#[test]
+fn conflicting_or_empty_radius_schedules_are_rejected_with_their_line() {
+    let e = fails(
+        &GOOD.replace(
+            "q = 0.5",
+            "q = 0.5\nalpha = 0.8\nradius_schedule = \"fixed\"",
+        ),
+        &[],
+    );
+    assert_at(&e, 9, "integrator.radius_schedule");
+    assert!(e.to_string().contains("alpha = 0.8"), "{e}");
+    let e = fails(&GOOD.replace("q = 0.5", "q = 0.5\nshrink_after = 0"), &[]);
+    assert_at(&e, 8, "integrator.shrink_after");
+    let e = fails(GOOD, &["integrator.radius_schedule=\"sometimes\""]);
+    assert!(e.to_string().contains("radius_schedule"), "{e}");
+}
+
 #[test]
 fn out_of_range_q_is_rejected_with_its_line() {
     let e = fails(&GOOD.replace("q = 0.5", "q = 1.5"), &[]);

@@ -33,6 +33,18 @@ fn text(args: &SceneArgs) -> anyhow::Result<ExitCode> {
         "radius:       {r0:.5} m = {:.2} x the median pixel footprint ({footprint:.5} m)",
         r0 / footprint
     )?;
+    let schedule = match integrator.radius.shrink {
+        brume::integrator::Shrink::Fixed => "fixed (every pass)".to_string(),
+        brume::integrator::Shrink::Progressive { alpha } => {
+            format!("progressive, alpha {alpha} (R^2 x (p + alpha) / (p + 1) each pass)")
+        }
+        brume::integrator::Shrink::Consistent { after } => format!(
+            "consistent: fixed for {after} passes, then x (n / {after})^(-1/6) at pass n \
+             (0.5 x at {} passes)",
+            after.saturating_mul(64)
+        ),
+    };
+    outln!("radius schedule: {schedule}")?;
     if integrator.indirect_scale != 1.0 {
         let ri = integrator.radii(0).indirect;
         outln!(

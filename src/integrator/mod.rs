@@ -35,7 +35,7 @@ pub use direct::Direct;
 pub use estimator::Estimator;
 pub use memory::{MemoryEstimate, format_bytes};
 pub use pass::{Budget, MAX_PASS_END, Renderer, Stats};
-pub use radius::{Radii, RadiusSchedule, radius_for_pass};
+pub use radius::{Radii, RadiusSchedule, Shrink, radius_for_pass};
 pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
 
 use crate::medium::MediumError;
@@ -89,7 +89,7 @@ impl Integrator {
             splat_to_camera,
             radius: RadiusSchedule {
                 r0,
-                alpha: desc.alpha,
+                shrink: desc.shrink(),
             },
             indirect_scale: desc.radius_indirect.map_or(1.0, |ri| ri / r0),
             forward_rays: desc.forward_rays.value().unwrap_or(defaults::FORWARD_RAYS),

@@ -1,5 +1,5 @@
 //! The pass loop: camera pass -> gather structure -> light pass -> film, until a budget of
-//! passes or wall-clock time is spent. Radii shrink progressively when `integrator.alpha` < 1.
+//! passes or wall-clock time is spent. Each pass's radii follow the schedule of `radius`.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;

@@ -1,16 +1,40 @@
-//! The progressive radius schedule: `R_{p+1}^2 = R_p^2 (p + 1 + alpha) / (p + 2)` from pass
-//! `p` to pass `p + 1`, passes counted from 0 (the rule `(i + alpha) / (i + 1)` of Hachisuka &
-//! Jensen 2009 with i = p + 1 passes done, applied per pass as in Knaus & Zwicker 2011). `alpha = 1` keeps
-//! the radius fixed (the paper's setting). Also the starting radius `"auto"` picks.
+//! The radius of each pass. Three schedules ([`Shrink`]):
+//! - fixed: every pass at the starting radius (the paper's setting);
+//! - progressive (`integrator.alpha` < 1): `R_{p+1}^2 = R_p^2 (p + 1 + alpha) / (p + 2)` from
+//!   pass `p` to pass `p + 1`, passes counted from 0 (the rule `(i + alpha) / (i + 1)` of
+//!   Hachisuka & Jensen 2009 with i = p + 1 passes done, applied per pass as in Knaus & Zwicker
+//!   2011);
+//! - consistent (the default): fixed for the first `integrator.shrink_after` passes, then
+//!   `R = R_0 (P_0 / n)^(1/6)` at the n-th pass. A ball's blur is a bias of order R^2, and its
+//!   variance per pass of order 1 / R^2: forward rays cross it as lines (track length), so the
+//!   chance that one does goes as R^2 and its chord over the ball's volume as 1 / R^2, as with
+//!   photons on a surface disc. An average of n passes then has a mean square error
+//!   `c R^4 + s / (n R^2)`, least at R ~ n^(-1/6), where bias and noise fall together as
+//!   n^(-1/3) (Hachisuka & Jensen's alpha = 2/3 has that rate; docs/media.md, "The radius over
+//!   passes"). The wait keeps the renders of a session, whose error is mostly noise, at the
+//!   radius the pilots found efficient.
+//!
+//! Also the starting radius `"auto"` picks.
 
 use crate::camera::Camera;
 use crate::geometry::{Aabb, Geometry, Ray, spawn};
+
+/// How the radius changes from pass to pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shrink {
+    /// The starting radius for every pass.
+    Fixed,
+    /// Hachisuka & Jensen's progressive rule, from the first pass.
+    Progressive { alpha: f32 },
+    /// Fixed for `after` passes, then falling as `n^(-1/6)`.
+    Consistent { after: u64 },
+}
 
 /// The radius of every pass of a render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RadiusSchedule {
     pub r0: f32,
-    pub alpha: f32,
+    pub shrink: Shrink,
 }
 
 /// Above this pass index the log-gamma difference below loses digits (lgamma(1e6) is about
@@ -18,26 +42,47 @@ pub struct RadiusSchedule {
 /// the gamma ratio is accurate to O(1/p^2) instead.
 const ASYMPTOTIC_FROM: f64 = 1e6;
 
+/// The consistent schedule's exponent: R ~ n^(-1/6), the rate that balances a ball's R^2 bias
+/// against its 1/R^2 variance (module comment).
+pub const CONSISTENT_EXPONENT: f64 = 1.0 / 6.0;
+
 impl RadiusSchedule {
-    /// Radius of pass `p` (0-based), in closed form:
-    /// `R_p^2 = R_0^2 prod_{i=1..p} (i + a)/(i + 1) = R_0^2 Γ(p + 1 + a) / (Γ(1 + a) Γ(p + 2))`,
-    /// so that a render may start at any pass (resume, pass ranges) in constant time.
+    /// Radius of pass `p` (0-based), in closed form, so that a render may start at any pass
+    /// (resume, pass ranges) in constant time.
     pub fn at(&self, p: u64) -> f32 {
-        let a = self.alpha as f64;
-        if a == 1.0 || p == 0 {
-            return self.r0;
+        match self.shrink {
+            Shrink::Fixed => self.r0,
+            Shrink::Progressive { alpha } => progressive(self.r0, alpha, p),
+            Shrink::Consistent { after } => {
+                let n = p.saturating_add(1);
+                if n <= after {
+                    return self.r0;
+                }
+                // libm, not the platform's pow: the same bits on every machine.
+                let f = libm::pow(after as f64 / n as f64, CONSISTENT_EXPONENT);
+                (self.r0 as f64 * f) as f32
+            }
         }
-        let x = p as f64 + 1.0;
-        // ln Γ(x + a) - ln Γ(x + 1), then the constant -ln Γ(1 + a).
-        let ratio = if x < ASYMPTOTIC_FROM {
-            libm::lgamma(x + a) - libm::lgamma(x + 1.0)
-        } else {
-            // Γ(x + a)/Γ(x + b) = x^(a-b) (1 + (a-b)(a+b-1)/(2x) + O(1/x^2)), with b = 1.
-            (a - 1.0) * x.ln() + (a - 1.0) * a / (2.0 * x)
-        };
-        let r2 = (self.r0 as f64).powi(2) * (ratio - libm::lgamma(1.0 + a)).exp();
-        r2.sqrt() as f32
     }
+}
+
+/// Hachisuka & Jensen's radius at pass `p`:
+/// `R_p^2 = R_0^2 prod_{i=1..p} (i + a)/(i + 1) = R_0^2 Γ(p + 1 + a) / (Γ(1 + a) Γ(p + 2))`.
+fn progressive(r0: f32, alpha: f32, p: u64) -> f32 {
+    let a = alpha as f64;
+    if a == 1.0 || p == 0 {
+        return r0;
+    }
+    let x = p as f64 + 1.0;
+    // ln Γ(x + a) - ln Γ(x + 1), then the constant -ln Γ(1 + a).
+    let ratio = if x < ASYMPTOTIC_FROM {
+        libm::lgamma(x + a) - libm::lgamma(x + 1.0)
+    } else {
+        // Γ(x + a)/Γ(x + b) = x^(a-b) (1 + (a-b)(a+b-1)/(2x) + O(1/x^2)), with b = 1.
+        (a - 1.0) * x.ln() + (a - 1.0) * a / (2.0 * x)
+    };
+    let r2 = (r0 as f64).powi(2) * (ratio - libm::lgamma(1.0 + a)).exp();
+    r2.sqrt() as f32
 }
 
 /// The two radii of a pass. The gathered part holds two kinds of light: the direct light of
@@ -73,9 +118,9 @@ impl Radii {
     }
 }
 
-/// Radius for pass `p` of a schedule starting at `r0` (see [`RadiusSchedule::at`]).
+/// Radius for pass `p` of the progressive schedule starting at `r0` (`alpha` = 1: fixed).
 pub fn radius_for_pass(r0: f32, alpha: f32, p: u64) -> f32 {
-    RadiusSchedule { r0, alpha }.at(p)
+    progressive(r0, alpha, p)
 }
 
 /// Pixels sampled (per side) to find the footprint of `auto_radius`.
@@ -162,9 +207,11 @@ mod tests {
         for alpha in [0.2f64, 0.5, 2.0 / 3.0, 0.9, 1.0] {
             let s = RadiusSchedule {
                 r0: 0.01,
-                alpha: alpha as f32,
+                shrink: Shrink::Progressive {
+                    alpha: alpha as f32,
+                },
             };
-            let a = s.alpha as f64;
+            let a = alpha as f32 as f64;
             let mut r2 = (s.r0 as f64).powi(2);
             for p in 0..5000u64 {
                 if p > 0 {
@@ -178,7 +225,7 @@ mod tests {
         // R_p ~ p^((a-1)/2): compare the two forms on either side of the switch.
         let s = RadiusSchedule {
             r0: 1.0,
-            alpha: 0.5,
+            shrink: Shrink::Progressive { alpha: 0.5 },
         };
         let below = s.at(999_998) as f64;
         let above = s.at(1_000_001) as f64;
@@ -254,12 +301,57 @@ mod tests {
     /// positive radius.
     #[test]
     fn huge_pass_indices_are_instant() {
+        for shrink in [
+            Shrink::Progressive { alpha: 0.7 },
+            Shrink::Consistent { after: 256 },
+        ] {
+            let s = RadiusSchedule { r0: 0.01, shrink };
+            let r = s.at(9_007_199_254_740_990);
+            assert!(r.is_finite() && r > 0.0 && r < 0.01, "{shrink:?}: {r}");
+            assert_eq!(s.at(0), 0.01);
+        }
         let s = RadiusSchedule {
             r0: 0.01,
-            alpha: 0.7,
+            shrink: Shrink::Consistent { after: 256 },
         };
-        let r = s.at(9_007_199_254_740_990);
-        assert!(r.is_finite() && r > 0.0 && r < 0.01, "{r}");
-        assert_eq!(s.at(0), 0.01);
+        assert!(s.at(u64::MAX) > 0.0);
+    }
+
+    /// The consistent schedule: the starting radius for the first `after` passes, then
+    /// `R_0 (after / n)^(1/6)` at the n-th pass, continuous where it starts to shrink, and
+    /// halving the radius takes 2^6 = 64 times the passes. Against the formula evaluated
+    /// independently (f64 powf): an off-by-one in the pass count (pass p as the p-th instead of
+    /// the (p+1)-th) or another exponent fails.
+    #[test]
+    fn the_consistent_schedule_waits_then_falls_as_n_to_the_minus_one_sixth() {
+        let after = 256u64;
+        let s = RadiusSchedule {
+            r0: 0.03,
+            shrink: Shrink::Consistent { after },
+        };
+        for p in 0..after {
+            assert_eq!(s.at(p), 0.03, "pass {p}");
+        }
+        for p in [256u64, 257, 300, 1000, 4095, 100_000, 1 << 40] {
+            let want = 0.03 * (after as f64 / (p + 1) as f64).powf(1.0 / 6.0);
+            let got = s.at(p) as f64;
+            assert!((got / want - 1.0).abs() < 1e-6, "pass {p}: {got} vs {want}");
+        }
+        // The n-th pass is the (p + 1)-th: pass 255 is the last at R_0, pass 256 the first below.
+        assert!(s.at(256) < 0.03 && s.at(256) > 0.03 * 0.999);
+        let (a, b) = (s.at(1023) as f64, s.at(64 * 1024 - 1) as f64);
+        assert!((a / b / 2.0 - 1.0).abs() < 1e-6, "{a} / {b}");
+    }
+
+    /// Fixed is fixed, whatever the pass.
+    #[test]
+    fn the_fixed_schedule_never_changes() {
+        let s = RadiusSchedule {
+            r0: 0.02,
+            shrink: Shrink::Fixed,
+        };
+        for p in [0u64, 1, 255, 256, 1 << 20, u64::MAX] {
+            assert_eq!(s.at(p), 0.02);
+        }
     }
 }

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::radius::Shrink;
 use super::setting::Setting;
 use crate::medium::{ChannelPick, Medium, Mixture};
 use crate::spectrum::Spectrum;
@@ -23,6 +24,26 @@ pub enum VolumeKind {
     /// Paper eq. 3: deterministic attenuation along forward segments too.
     CylinderLong,
 }
+
+/// How the radius changes over the passes when `alpha` is 1 (`integrator.radius_schedule`;
+/// `radius::Shrink`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RadiusScheduleKind {
+    /// Every pass at the starting radius: the paper's setting, whose images converge to the
+    /// scene blurred over the radius.
+    Fixed,
+    /// Fixed for `shrink_after` passes, then falling as n^(-1/6): a consistent estimator.
+    Consistent,
+}
+
+/// Passes at the starting radius before the consistent schedule shrinks it. The speed
+/// protocol's 60 s renders at default settings run about 75 passes on fog-cube, 81 on
+/// chromatic-cube, 406 on fog-room-laser and 740 on chromatic-fog (docs/performance.md): the
+/// slow passes of large budgets, whose error is mostly noise, keep the radius the automatic
+/// choice found efficient; many fast passes, where a fixed radius's blur becomes the error
+/// left, shrink it.
+pub const SHRINK_AFTER: u64 = 256;
 
 /// Which light the medium's integration volumes collect (`integrator.mode`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -125,8 +146,13 @@ pub struct IntegratorDesc {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub expected_transmission: Option<bool>,
     /// Progressive radius reduction (Hachisuka & Jensen): R^2 shrinks by (p + alpha) / (p + 1)
-    /// after pass p. 1 keeps the radius fixed (the paper's setting).
+    /// after pass p. Below 1 it is the schedule; 1 leaves it to `radius_schedule`.
     pub alpha: f32,
+    /// The radius's schedule when `alpha` is 1; absent: consistent (`shrink()`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius_schedule: Option<RadiusScheduleKind>,
+    /// Passes at the starting radius before the consistent schedule shrinks it.
+    pub shrink_after: u64,
     /// Forward (light) rays traced per pass.
     pub forward_rays: Setting<u64>,
     /// Camera samples per pixel per pass.
@@ -167,6 +193,8 @@ impl Default for IntegratorDesc {
             splat_to_camera: None,
             expected_transmission: None,
             alpha: 1.0,
+            radius_schedule: None,
+            shrink_after: SHRINK_AFTER,
             forward_rays: Setting::Auto,
             camera_samples: Setting::Auto,
             max_depth: 32,
@@ -188,6 +216,23 @@ impl Default for IntegratorDesc {
 }
 
 impl IntegratorDesc {
+    /// The radius's schedule: `alpha` below 1 is Hachisuka & Jensen's progressive rule;
+    /// otherwise `radius_schedule`, consistent when absent (`radius` module comment).
+    pub fn shrink(&self) -> Shrink {
+        if self.alpha < 1.0 {
+            return Shrink::Progressive { alpha: self.alpha };
+        }
+        match self
+            .radius_schedule
+            .unwrap_or(RadiusScheduleKind::Consistent)
+        {
+            RadiusScheduleKind::Fixed => Shrink::Fixed,
+            RadiusScheduleKind::Consistent => Shrink::Consistent {
+                after: self.shrink_after,
+            },
+        }
+    }
+
     /// Whether camera paths take expected transmission (the key, or its default): on with
     /// next-event estimation, where the surfaces seen through fog are otherwise the noisiest
     /// layer (fog-cube at default settings and equal passes: 4.4x lower surface-layer and 1.7x
@@ -198,6 +243,39 @@ impl IntegratorDesc {
             DirectMode::Nee => true,
             DirectMode::Photons => false,
         })
+    }
+
+    /// The radius schedule's keys (`check`): alpha's range, a schedule named beside a
+    /// progressive alpha, and the consistent schedule's wait.
+    fn check_schedule(&self, fail: &mut impl FnMut(&str, String)) {
+        if !(self.alpha > 0.0 && self.alpha <= 1.0) {
+            fail(
+                "integrator.alpha",
+                format!("must be in (0, 1], got {}", self.alpha),
+            );
+        }
+        if self.alpha < 1.0
+            && let Some(kind) = self.radius_schedule
+        {
+            let kind = match kind {
+                RadiusScheduleKind::Fixed => "fixed",
+                RadiusScheduleKind::Consistent => "consistent",
+            };
+            fail(
+                "integrator.radius_schedule",
+                format!(
+                    "\"{kind}\" conflicts with alpha = {} (below 1, alpha is the progressive \
+                     schedule): keep one of the two",
+                    self.alpha
+                ),
+            );
+        }
+        if self.shrink_after == 0 {
+            fail(
+                "integrator.shrink_after",
+                "must be at least 1 pass (radius_schedule = \"fixed\" never shrinks)".into(),
+            );
+        }
     }
 
     /// Reports every out-of-range setting to `fail(key, message)`.
@@ -218,12 +296,7 @@ impl IntegratorDesc {
                 format!("must be a finite number > 0, got {r}"),
             );
         }
-        if !(self.alpha > 0.0 && self.alpha <= 1.0) {
-            fail(
-                "integrator.alpha",
-                format!("must be in (0, 1], got {}", self.alpha),
-            );
-        }
+        self.check_schedule(&mut fail);
         if let Some(q) = self.q.value()
             && !(q > 0.0 && q <= 1.0)
         {

@@ -308,8 +308,10 @@ def peer_settings(a, s: Setup, mi) -> dict:
     integ = a.integrator
     if integ == "auto":
         integ = "volpathmis" if spectral_media(s.desc, a.scene.parent) else "volpath"
+    # The translation's light scale (mitsuba_scene.mitsuba_y_excess) is in the key: references
+    # rendered before it were 0.1 % bright and must not be reused.
     return {"mitsuba": mi.__version__, "variant": a.variant, "integrator": integ, "spot_profile": a.spot_profile,
-            "floor": a.floor, "chunk_spp": a.chunk_spp}
+            "floor": a.floor, "chunk_spp": a.chunk_spp, "y_scale": round(1.0 / mitsuba_scene.mitsuba_y_excess(mi), 9)}
 
 
 def choose_peer(a, s: Setup, mi, ps: dict) -> tuple[Peer, dict]:
