@@ -35,7 +35,7 @@ pub use direct::Direct;
 pub use estimator::Estimator;
 pub use memory::{MemoryEstimate, format_bytes};
 pub use pass::{Budget, MAX_PASS_END, Renderer, Stats};
-pub use radius::{Radii, RadiusSchedule, Shrink, radius_for_pass};
+pub use radius::{Radii, RadiusSchedule, Shrink};
 pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
 
 use crate::medium::MediumError;

@@ -118,11 +118,6 @@ impl Radii {
     }
 }
 
-/// Radius for pass `p` of the progressive schedule starting at `r0` (`alpha` = 1: fixed).
-pub fn radius_for_pass(r0: f32, alpha: f32, p: u64) -> f32 {
-    progressive(r0, alpha, p)
-}
-
 /// Pixels sampled (per side) to find the footprint of `auto_radius`.
 const FOOTPRINT_GRID: u32 = 24;
 /// `auto_radius` in pixel footprints. Measured at equal CPU time with next-event estimation
