@@ -4,6 +4,8 @@
 
 #[path = "reliability_cli/interrupts.rs"]
 mod interrupts;
+#[path = "reliability_cli/legacy_films.rs"]
+mod legacy_films;
 #[path = "reliability_cli/pipes.rs"]
 mod pipes;
 

@@ -289,7 +289,10 @@ pub fn merge(films: &Bound<'_, PyList>) -> PyResult<RenderResult> {
         return Err(PyValueError::new_err("merge: no films given"));
     };
     for (name, f, pid) in parts {
-        pid.check(&id).map_err(|m| {
+        // As `brume merge`: the merged film carries the first film's identity, so both films'
+        // passes must be rendered alike under both descriptions.
+        let passes = film.first.min(f.first)..(film.first + film.passes).max(f.first + f.passes);
+        brume::scene::identity::same_render(&pid, &id, passes).map_err(|m| {
             film_error(format!(
                 "{name} is not of the same render as {first_name}: {}",
                 m.describe(&name, &first_name)

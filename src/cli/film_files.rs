@@ -153,14 +153,14 @@ pub fn report_extras(film: &Film, quiet: bool) -> std::io::Result<()> {
     printed
 }
 
-/// Refuses a film of another render than `reference`, naming the files and what differs.
+/// Refuses a film of another render than `reference`, naming the files and what differs;
+/// `passes` are the passes the films share or hand on (`scene::identity::same_render`).
 pub fn check_same_render(
-    ours: &FilmId,
-    ours_name: &str,
-    reference: &FilmId,
-    reference_name: &str,
+    (ours, ours_name): (&FilmId, &str),
+    (reference, reference_name): (&FilmId, &str),
+    passes: std::ops::Range<u64>,
 ) -> anyhow::Result<()> {
-    ours.check(reference).map_err(|m| {
+    brume::scene::identity::same_render(ours, reference, passes).map_err(|m| {
         anyhow::anyhow!(
             "{ours_name} is not of the same render as {reference_name}: {}",
             m.describe(ours_name, reference_name)

@@ -93,7 +93,14 @@ fn check_parts(parts: &[(PathBuf, FilmHeader)]) -> anyhow::Result<()> {
     let shape = |h: &FilmHeader| (h.width, h.height, h.grid.clone());
     for w in parts.windows(2) {
         let ((pa, a), (pb, b)) = (&w[0], &w[1]);
-        film_files::check_same_render(&b.id, &pb.display().to_string(), &first.id, &first_name)?;
+        // The merged film carries the first part's identity: every part's passes must be
+        // rendered alike under both descriptions.
+        let passes = first.first.min(b.first)..first.end().max(b.end());
+        film_files::check_same_render(
+            (&b.id, &pb.display().to_string()),
+            (&first.id, &first_name),
+            passes,
+        )?;
         anyhow::ensure!(
             shape(a) == shape(b),
             "{} and {}: films differ in size or spectral grid",

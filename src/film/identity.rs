@@ -160,6 +160,13 @@ impl FilmId {
 
     /// `Ok` when a film of `self` continues or completes a film of `reference` exactly.
     pub fn check(&self, reference: &FilmId) -> Result<(), Mismatch> {
+        self.check_except(reference, &[])
+    }
+
+    /// [`FilmId::check`] with the dotted keys `ignored` left out of the descriptions'
+    /// comparison: for keys the caller knows to leave this film's passes unchanged (such as a
+    /// radius schedule that only differs after the passes in question).
+    pub fn check_except(&self, reference: &FilmId, ignored: &[&str]) -> Result<(), Mismatch> {
         if self.seed != reference.seed {
             return Err(Mismatch::Seed {
                 ours: self.seed,
@@ -169,7 +176,10 @@ impl FilmId {
         if self.scene_hash != reference.scene_hash || self.description != reference.description {
             let mut found = Vec::new();
             differences(&self.description, &reference.description, "", &mut found);
-            return Err(Mismatch::Settings(found));
+            found.retain(|d| !ignored.contains(&d.key.as_str()));
+            if !found.is_empty() {
+                return Err(Mismatch::Settings(found));
+            }
         }
         let (ours, theirs) = (&self.sampling, &reference.sampling);
         if ours.gather_budget != theirs.gather_budget {
@@ -343,5 +353,35 @@ mod tests {
         v.version = "2.0".into();
         let f = FilmId::new(&desc(), 7, v).unwrap();
         assert!(matches!(f.check(&a), Err(Mismatch::Version { .. })));
+    }
+
+    /// Ignored keys leave the others compared, whether they differ in value or are absent on
+    /// one side.
+    #[test]
+    fn ignored_keys_are_left_out_and_only_they() {
+        let a = FilmId::new(&desc(), 7, sampling(100, 8)).unwrap();
+        let mut d = desc();
+        d["integrator"]["schedule"] = json!("fixed");
+        d["integrator"]["q"] = json!(0.25);
+        let b = FilmId::new(&d, 7, sampling(100, 8)).unwrap();
+        let only_q = b.check_except(&a, &["integrator.schedule"]).unwrap_err();
+        assert_eq!(
+            only_q,
+            Mismatch::Settings(vec![Difference {
+                key: "integrator.q".into(),
+                ours: "0.25".into(),
+                theirs: "0.5".into(),
+            }])
+        );
+        d["integrator"]["q"] = json!(0.5);
+        let c = FilmId::new(&d, 7, sampling(100, 8)).unwrap();
+        assert_eq!(c.check_except(&a, &["integrator.schedule"]), Ok(()));
+        assert!(c.check(&a).is_err());
+        // The checks after the description's still apply.
+        let e = FilmId::new(&d, 7, sampling(50, 8)).unwrap();
+        assert!(matches!(
+            e.check_except(&a, &["integrator.schedule"]),
+            Err(Mismatch::GatherBudget { .. })
+        ));
     }
 }

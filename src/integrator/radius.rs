@@ -30,6 +30,22 @@ pub enum Shrink {
     Consistent { after: u64 },
 }
 
+impl Shrink {
+    /// How many passes from the first keep the starting radius: every pass before this index
+    /// is rendered alike under any two schedules whose counts reach past it (films that differ
+    /// only in their schedules are of one render over those passes: `scene::same_render`).
+    pub fn unchanged_passes(&self) -> u64 {
+        match *self {
+            Shrink::Fixed => u64::MAX,
+            Shrink::Progressive { alpha } if alpha >= 1.0 => u64::MAX,
+            // Pass 0 has the starting radius; pass 1 already a smaller one.
+            Shrink::Progressive { .. } => 1,
+            // Pass p is the (p + 1)-th: the starting radius while p + 1 <= after.
+            Shrink::Consistent { after } => after,
+        }
+    }
+}
+
 /// The radius of every pass of a render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RadiusSchedule {
@@ -290,6 +306,28 @@ mod tests {
             "perspective auto radius {r} = {} footprints",
             r / f
         );
+    }
+
+    /// `unchanged_passes` is where each schedule first leaves the starting radius, read off
+    /// `at` itself: one pass too many or too few fails.
+    #[test]
+    fn unchanged_passes_are_those_at_the_starting_radius() {
+        for shrink in [
+            Shrink::Progressive { alpha: 0.7 },
+            Shrink::Consistent { after: 1 },
+            Shrink::Consistent { after: 5 },
+            Shrink::Consistent { after: 256 },
+        ] {
+            let s = RadiusSchedule { r0: 0.02, shrink };
+            let n = shrink.unchanged_passes();
+            assert!((0..n).all(|p| s.at(p) == 0.02), "{shrink:?}");
+            assert!(s.at(n) < 0.02, "{shrink:?}");
+        }
+        for shrink in [Shrink::Fixed, Shrink::Progressive { alpha: 1.0 }] {
+            let s = RadiusSchedule { r0: 0.02, shrink };
+            assert_eq!(shrink.unchanged_passes(), u64::MAX);
+            assert_eq!(s.at(1 << 40), 0.02);
+        }
     }
 
     /// Huge pass indices (a pass range near 2^53) take constant time and give a finite,

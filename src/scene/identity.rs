@@ -2,11 +2,13 @@
 //! and the output settings recorded in it. The command line and the Python package both call
 //! these, so a film or image written by either is the same bytes.
 
+use std::ops::Range;
 use std::path::Path;
 
 use crate::film::output::OutputOptions;
-use crate::film::{FilmId, IdentityError, Sampling};
+use crate::film::{FilmId, IdentityError, Mismatch, Sampling};
 use crate::integrator::auto::Choice;
+use crate::integrator::{IntegratorDesc, Shrink};
 
 use super::desc::FilmDesc;
 use super::loaded::LoadedScene;
@@ -112,4 +114,105 @@ pub fn memory_check(scene: &LoadedScene) -> Result<(), MemoryCheckError> {
         });
     }
     Ok(())
+}
+
+/// The keys of the radius schedule. Films that differ only in them are of one render over
+/// the passes where both schedules keep the starting radius.
+const SCHEDULE_KEYS: [&str; 2] = ["integrator.radius_schedule", "integrator.shrink_after"];
+
+/// The radius schedule a film's description records. A film from before the schedule keys
+/// (no `integrator.shrink_after` recorded) kept its starting radius at every pass when
+/// `alpha` was 1: its schedule is fixed, not today's default.
+fn recorded_shrink(id: &FilmId) -> Option<Shrink> {
+    let recorded = id.section("integrator")?;
+    let desc: IntegratorDesc = serde_json::from_value(recorded.clone()).ok()?;
+    if desc.alpha >= 1.0 && recorded.get("shrink_after").is_none() {
+        return Some(Shrink::Fixed);
+    }
+    Some(desc.shrink())
+}
+
+/// `Ok` when the film `ours` continues or completes the film `reference` exactly (as
+/// [`FilmId::check`]), where `passes` are the pass indices whose sums the two films share or
+/// hand on (a resumed checkpoint's, or the union of two parts' ranges). Films whose radius
+/// schedules differ (another `radius_schedule` or `shrink_after`, or a film written before
+/// those keys existed) are of one render when every one of those passes has the starting
+/// radius under both schedules: their sums are then the same bits. A film of 300 passes at a
+/// fixed radius is refused by a render whose radius shrinks from pass 256, naming the key.
+pub fn same_render(ours: &FilmId, reference: &FilmId, passes: Range<u64>) -> Result<(), Mismatch> {
+    let agree = match (recorded_shrink(ours), recorded_shrink(reference)) {
+        (Some(a), Some(b)) => {
+            a == b || passes.end <= a.unchanged_passes().min(b.unchanged_passes())
+        }
+        _ => false,
+    };
+    if agree {
+        ours.check_except(reference, &SCHEDULE_KEYS)
+    } else {
+        ours.check(reference)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn id(integrator: serde_json::Value) -> FilmId {
+        let sampling = Sampling {
+            gather_budget: 1,
+            machine_memory: 0,
+            version: "t".into(),
+        };
+        let desc = json!({ "integrator": integrator, "film": { "bins": 8 } });
+        FilmId::new(&desc, 3, sampling).unwrap()
+    }
+
+    fn key_named(r: Result<(), Mismatch>, key: &str) -> bool {
+        matches!(r, Err(Mismatch::Settings(d)) if d.iter().any(|d| d.key == key))
+    }
+
+    /// A film from before the schedule keys (fixed radius) joins today's default render
+    /// while every pass it holds is before the shrink starts, and any render that asks for
+    /// the fixed schedule; past the onset it is refused, naming the key.
+    #[test]
+    fn films_before_the_schedule_keys_are_fixed_radius_films() {
+        let legacy = id(json!({ "alpha": 1.0, "q": 0.5 }));
+        let today = id(json!({ "alpha": 1.0, "q": 0.5, "shrink_after": 256 }));
+        let fixed = id(json!({
+            "alpha": 1.0, "q": 0.5, "shrink_after": 256, "radius_schedule": "fixed"
+        }));
+        assert_eq!(recorded_shrink(&legacy), Some(Shrink::Fixed));
+        assert_eq!(
+            recorded_shrink(&today),
+            Some(Shrink::Consistent { after: 256 })
+        );
+        assert_eq!(same_render(&legacy, &today, 0..256), Ok(()));
+        assert_eq!(same_render(&today, &legacy, 100..256), Ok(()));
+        assert!(key_named(
+            same_render(&legacy, &today, 0..257),
+            "integrator.shrink_after"
+        ));
+        assert_eq!(same_render(&legacy, &fixed, 0..100_000), Ok(()));
+        // Other keys are still compared.
+        let other_q = id(json!({ "alpha": 1.0, "q": 0.25, "shrink_after": 256 }));
+        assert!(key_named(
+            same_render(&legacy, &other_q, 0..10),
+            "integrator.q"
+        ));
+    }
+
+    /// Two consistent schedules agree before the earlier onset; a progressive one only on
+    /// pass 0.
+    #[test]
+    fn schedules_agree_before_either_shrinks() {
+        let a = id(json!({ "alpha": 1.0, "shrink_after": 64 }));
+        let b = id(json!({ "alpha": 1.0, "shrink_after": 256 }));
+        assert_eq!(same_render(&a, &b, 0..64), Ok(()));
+        assert!(same_render(&a, &b, 0..65).is_err());
+        let p = id(json!({ "alpha": 0.7, "shrink_after": 256 }));
+        let p_later = id(json!({ "alpha": 0.7, "shrink_after": 64 }));
+        assert_eq!(same_render(&p, &p_later, 0..1000), Ok(()));
+        assert!(key_named(same_render(&p, &b, 0..1), "integrator.alpha"));
+    }
 }

@@ -38,7 +38,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let resume_path = args.resume.as_deref().unwrap_or(Path::new(""));
     if let Some(r) = &resumed {
         let name = resume_path.display().to_string();
-        film_files::check_same_render(&r.id, &name, &id, "the render asked for")?;
+        // The checkpoint's passes are kept as they are: they must be this render's.
+        let passes = r.film.first..r.film.first + r.film.passes;
+        film_files::check_same_render((&r.id, &name), (&id, "the render asked for"), passes)?;
     }
     let resumed_ref = resumed.as_ref().map(|r| (resume_path, r));
     let plan = plan::plan(args, loaded.desc.integrator.passes, resumed_ref, &cmd)?;
