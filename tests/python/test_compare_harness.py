@@ -188,3 +188,22 @@ spectrum = "D65"
     cos = 0.45 / np.linalg.norm(d_)
     y_exact = 0.4 / np.pi * 5.0 * cos * float(np.dot(shape, per_bin)) / norm
     assert abs(y_img / y_exact - 1.0) < 3e-4, (y_img, y_exact)
+
+
+def test_auto_bound_reads_the_pilots_model(brume):
+    """tools/compare/auto_bound.py parses the budget model `render --verbose` prints (a change
+    of that line's wording fails here, not silently in a measurement), and the automatic choice
+    sits on the model's lower bound of variance x cost: Cauchy-Schwarz makes V C >= the bound
+    for any budgets, and the optimiser's whole-number camera paths keep it within a few percent
+    (fog-cube at 32 x 32, its [integrator] table overridden to automatic budgets)."""
+    import math
+
+    import auto_bound
+
+    sets = ["camera.width=32", "camera.height=32", "integrator.forward_rays=\"auto\"",
+            "integrator.camera_samples=\"auto\""]
+    s, n, a, b, c, d, e, f = auto_bound.model(str(brume), str(ROOT / "scenes" / "fog-cube.toml"), 1, sets)
+    assert s >= 1 and n >= 1 and min(a, b, c, d, e, f) > 0
+    vc = (a / s + b / n + c / (s * n)) * (d * s + e * n + f * s * n)
+    bound = (math.sqrt(a * d) + math.sqrt(b * e) + math.sqrt(c * f)) ** 2
+    assert bound * (1 - 1e-9) <= vc < 1.05 * bound
