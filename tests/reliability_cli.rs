@@ -2,6 +2,8 @@
 //! image of passes 0..N of a seed must give the same bytes; every request that would give
 //! another image, or lose work, is refused before rendering. Drives the built `brume` binary.
 
+#[path = "reliability_cli/auto_budgets.rs"]
+mod auto_budgets;
 #[path = "reliability_cli/interrupts.rs"]
 mod interrupts;
 #[path = "reliability_cli/legacy_films.rs"]

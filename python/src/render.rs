@@ -11,7 +11,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use brume::film::{Film, FilmId};
-use brume::integrator::auto::Choice;
 use brume::integrator::{Budget, MAX_PASS_END, Renderer};
 use brume::scene::LoadedScene;
 
@@ -139,7 +138,6 @@ type Outcome = Result<Rendered, brume::scene::SceneError>;
 /// What a render that ran gives back (see [`Outcome`]).
 struct Rendered {
     film: Film,
-    auto: Option<Choice>,
     /// The row over the gather budget that stopped the render, if one did.
     failure: Option<String>,
     /// How the passes sampled: the resolved q, forward rays, camera paths and radius.
@@ -182,7 +180,6 @@ pub fn render(
     })?;
     let Rendered {
         film,
-        auto,
         failure,
         settings,
     } = outcome.map_err(crate::scene::scene_error)?;
@@ -192,7 +189,7 @@ pub fn render(
             film.passes
         )));
     }
-    RenderResult::new(film, id, auto, Some(settings))
+    RenderResult::new(film, id, Some(settings))
 }
 
 /// The progress callable: True (or not given) gives brume._progress's bar, False none.
@@ -299,7 +296,6 @@ fn run(
         "radius": i.radius.r0,
     });
     Ok(Rendered {
-        auto: renderer.auto_choice().cloned(),
         failure: renderer.over_budget().map(|e| e.to_string()),
         settings,
         film: renderer.into_film(),

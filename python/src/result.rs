@@ -12,7 +12,6 @@ use serde_json::json;
 use brume::colour::ColourSpace;
 use brume::film::output::{self, OutputOptions};
 use brume::film::{Film, FilmId, SpectralImage, checkpoint};
-use brume::integrator::auto::Choice;
 use brume::scene::identity::{is_film_path, output_options};
 
 use crate::FilmError;
@@ -23,7 +22,6 @@ use crate::convert::json_to_py;
 pub struct RenderResult {
     film: Film,
     id: FilmId,
-    auto: Option<Choice>,
     arrays: Py<PyDict>,
 }
 
@@ -39,13 +37,8 @@ fn array<'py>(py: Python<'py>, data: Vec<f32>, shape: &[usize]) -> PyResult<Boun
 impl RenderResult {
     /// The result of `film`; `settings` says how its passes sampled (None: unknown, as for a
     /// film file).
-    pub fn new(
-        film: Film,
-        id: FilmId,
-        auto: Option<Choice>,
-        settings: Option<serde_json::Value>,
-    ) -> PyResult<Self> {
-        let opts = output_options(&id, auto.as_ref()).map_err(film_error)?;
+    pub fn new(film: Film, id: FilmId, settings: Option<serde_json::Value>) -> PyResult<Self> {
+        let opts = output_options(&id, &film.auto_settings).map_err(film_error)?;
         Python::attach(|py| {
             let img = py.detach(|| film.image());
             let arrays = arrays(py, img, &opts)?;
@@ -54,7 +47,9 @@ impl RenderResult {
             s["first_pass"] = json!(film.first);
             s["passes"] = json!(film.passes);
             s["dropped_samples"] = json!(film.dropped);
-            s["auto"] = json!(auto.as_ref().map(|c| c.report.clone()));
+            // The choice the film keeps (a merge's and a film file's too), None without one.
+            let auto = &film.auto_settings;
+            s["auto"] = json!((!auto.is_empty()).then_some(auto));
             arrays.set_item("settings", json_to_py(py, &s.to_string())?)?;
             // Through a JSON value as the sensors' JSON file is written (f32 positions
             // widened to f64), so the readings compare equal to that file's.
@@ -63,7 +58,6 @@ impl RenderResult {
             Ok(Self {
                 film,
                 id,
-                auto,
                 arrays: arrays.unbind(),
             })
         })
@@ -79,7 +73,7 @@ impl RenderResult {
 
     pub fn read(path: &Path) -> PyResult<Self> {
         let f = Python::attach(|py| py.detach(|| checkpoint::read(path))).map_err(film_error)?;
-        Self::new(f.film, f.id, None, None)
+        Self::new(f.film, f.id, None)
     }
 }
 
@@ -141,7 +135,7 @@ impl RenderResult {
                 .map_err(film_error);
         }
         output::format_of(&path).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let opts = output_options(&self.id, self.auto.as_ref()).map_err(film_error)?;
+        let opts = output_options(&self.id, &self.film.auto_settings).map_err(film_error)?;
         py.detach(|| output::write(&path, &self.film.image(), &opts))
             .map_err(film_error)
     }
@@ -301,5 +295,5 @@ pub fn merge(films: &Bound<'_, PyList>) -> PyResult<RenderResult> {
         film.merge(&f)
             .map_err(|e| film_error(format!("{name}: cannot merge: {e}")))?;
     }
-    RenderResult::new(film, id, None, None)
+    RenderResult::new(film, id, None)
 }

@@ -73,9 +73,9 @@ def test_the_slurm_array_script_runs_task_by_task_and_merges(cli, tmp_path):
     cli("render", "scene.toml", *" ".join(sets).split(), "--seed", 7,
         "--set", "integrator.max_gather_bytes=4000000000", "--passes", 8, "-q",
         "-o", "single.brume", cwd=tmp_path)
-    # The images of the single run's film as `brume merge` writes them: a render's own EXR
-    # also records the automatic settings' choice (q is "auto" here) in its header, which a
-    # merge does not.
+    # The images of the single run's film as `brume merge` writes them (a render's own images
+    # are the same bytes too, the automatic settings' choice in the EXR header included:
+    # tests/reliability_cli/auto_budgets.rs).
     cli("merge", "single.brume", "-o", "single.exr", "-o", "single.png", "-q", cwd=tmp_path)
     for ext in ("exr", "png"):
         assert (tmp_path / f"out.{ext}").read_bytes() == (tmp_path / f"single.{ext}").read_bytes()

@@ -50,6 +50,11 @@ pub struct Film {
     pub sensor_sum: Vec<i128>,
     /// `[sensor]` sums of the squared photometric pass values, fixed point at `SQ_SCALE`.
     pub sensor_sq: Vec<i128>,
+    /// The automatic settings' choice, as `render --verbose` reports it: empty without
+    /// automatic settings (and in films written before films kept it). Images carry it as the
+    /// attribute `brumeAutoSettings`, so a merged image is the same bytes as a single run's.
+    /// Not part of the film's shape: the choice follows from the render's identity.
+    pub auto_settings: Vec<String>,
 }
 
 /// Why two films cannot be merged.
@@ -95,6 +100,7 @@ impl Film {
             light_sum: vec![0; lights * px],
             sensor_sum: vec![0; sensors * n],
             sensor_sq: vec![0; sensors],
+            auto_settings: Vec::new(),
         }
     }
 
@@ -280,6 +286,11 @@ impl Film {
         }
         self.passes += other.passes;
         self.dropped += other.dropped;
+        // Parts of one render made the same choice; a part written before films kept it has
+        // none.
+        if self.auto_settings.is_empty() {
+            self.auto_settings.clone_from(&other.auto_settings);
+        }
         Ok(())
     }
 

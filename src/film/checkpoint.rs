@@ -7,7 +7,7 @@
 //! of a UTF-8 JSON text (u32) and the text (the render's identity: scene description and
 //! sampling settings, see [`FilmId`]), the numbers of light layers and sensors (u32 each), the
 //! length of a JSON text (u32) and the text (the film's extras: its sensors and light layer
-//! names); then the sums and sums of squares (i128 each: pixels, light layers, sensors' values
+//! names, and the automatic settings' choice when there is one); then the sums and sums of squares (i128 each: pixels, light layers, sensors' values
 //! per bin, sensors' squared photometric values), and an FNV-1a 64 checksum of everything
 //! before it, so a truncated or damaged file is refused. Version 2 files (no lines, no extras)
 //! are still read.
@@ -20,11 +20,10 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
-
 use crate::spectrum::{MAX_BINS, SpectralGrid};
 
-use super::identity::{self, Fnv, Sampling};
+use super::identity::{self, Fnv};
+use super::stored::{self, StoredIdentity};
 use super::{Film, FilmExtras, FilmId, LAYERS, atomic};
 
 const MAGIC: &[u8; 8] = b"BRUMEFLM";
@@ -71,13 +70,6 @@ impl FilmHeader {
     }
 }
 
-/// The identity as stored: JSON, readable with any tool.
-#[derive(Serialize, Deserialize)]
-struct StoredIdentity {
-    description: serde_json::Value,
-    sampling: Sampling,
-}
-
 #[derive(Debug, thiserror::Error)]
 pub enum FilmFileError {
     #[error("{path}: {source}")]
@@ -121,7 +113,7 @@ pub fn write(path: &Path, film: &Film, id: &FilmId) -> Result<(), FilmFileError>
         sampling: id.sampling.clone(),
     })
     .map_err(io)?;
-    let extras = serde_json::to_vec(&film.extras).map_err(io)?;
+    let extras = stored::extras_json(film).map_err(io)?;
     atomic::replace(path, |tmp| {
         let mut w = Hashing {
             inner: BufWriter::with_capacity(1 << 20, File::create(tmp)?),
@@ -464,10 +456,10 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
     if computed != stored {
         return Err(damaged(path, "checksum mismatch"));
     }
-    let extras: FilmExtras = if raw.extras.is_empty() {
-        FilmExtras::default()
+    let (extras, auto_settings) = if raw.extras.is_empty() {
+        (FilmExtras::default(), Vec::new())
     } else {
-        serde_json::from_slice(&raw.extras).map_err(|_| damaged(path, "unreadable extras"))?
+        stored::read_extras(&raw.extras).map_err(|_| damaged(path, "unreadable extras"))?
     };
     if (extras.light_layers.len(), extras.sensors.len()) != (raw.lights, raw.sensors) {
         return Err(damaged(path, "extras do not match their counts"));
@@ -491,6 +483,7 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
         light_sum,
         sensor_sum,
         sensor_sq,
+        auto_settings,
     };
     Ok(FilmFile { film, id: h.id })
 }

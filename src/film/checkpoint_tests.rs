@@ -1,7 +1,7 @@
 //! Tests of the film file: round trips, versions, damaged and hostile files.
 
 use super::*;
-use crate::film::PassBuffer;
+use crate::film::{PassBuffer, Sampling};
 
 fn sample() -> FilmFile {
     sample_on(SpectralGrid::new(3, 380.0, 730.0))

@@ -13,6 +13,7 @@ mod layer;
 pub mod output;
 mod pass;
 mod sensor;
+mod stored;
 
 pub use accum::{Film, MAX_SAMPLE, MergeError};
 pub use checkpoint::{FilmFile, FilmFileError, FilmHeader};

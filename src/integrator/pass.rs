@@ -209,7 +209,18 @@ impl<'a> Renderer<'a> {
             t.record(seq, pixel_totals(&buf.data, buf.pixels, buf.n), work);
         }
         self.film.add_pass(&buf);
+        self.keep_choice();
         true
+    }
+
+    /// Puts the automatic settings' choice on the film once it is made, so that the film's
+    /// checkpoints and parts carry it to their images (`Film::auto_settings`).
+    fn keep_choice(&mut self) {
+        if self.film.auto_settings.is_empty()
+            && let Some(c) = self.tuner.as_ref().and_then(Tuner::choice)
+        {
+            self.film.auto_settings = c.report.clone();
+        }
     }
 
     /// Renders, without adding them to the film, the pilot passes before pass `seq` of the
@@ -234,6 +245,7 @@ impl<'a> Renderer<'a> {
             if let Some(t) = &mut self.tuner {
                 t.record(next, pixel_totals(&buf.data, buf.pixels, buf.n), work);
             }
+            self.keep_choice();
             next += 1;
         }
         true

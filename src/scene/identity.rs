@@ -7,7 +7,6 @@ use std::path::Path;
 
 use crate::film::output::OutputOptions;
 use crate::film::{FilmId, IdentityError, Mismatch, Sampling};
-use crate::integrator::auto::Choice;
 use crate::integrator::{IntegratorDesc, Shrink};
 
 use super::desc::FilmDesc;
@@ -55,15 +54,16 @@ pub fn film_desc(id: &FilmId) -> Result<FilmDesc, FilmSettingsError> {
 }
 
 /// The output settings of a film's images: the scene's `[film]` table, and the automatic
-/// settings' choice as the EXR attribute `brumeAutoSettings` when the render made one.
+/// settings' choice (`Film::auto_settings`, `Choice::report`) as the EXR attribute
+/// `brumeAutoSettings` when the render made one.
 pub fn output_options(
     id: &FilmId,
-    auto: Option<&Choice>,
+    auto_settings: &[String],
 ) -> Result<OutputOptions, FilmSettingsError> {
     let mut opts = film_desc(id)?.output_options();
-    if let Some(c) = auto {
+    if !auto_settings.is_empty() {
         opts.attributes
-            .push(("brumeAutoSettings".into(), c.report.join("; ")));
+            .push(("brumeAutoSettings".into(), auto_settings.join("; ")));
     }
     Ok(opts)
 }

@@ -62,7 +62,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     // An interrupt from now on lets the files being written finish; a second aborts.
     interrupt.writing_starts();
-    let saved = save(args, (&outputs, &derived), &film, &id, auto.as_ref())?;
+    let saved = save(args, (&outputs, &derived), &film, &id)?;
     let interrupted = interrupted || interrupt.interrupted();
     report(args, &film, &id, interrupted, start, &saved, &cmd);
     if film.passes > 0 && plan.range.is_none() {
@@ -220,13 +220,12 @@ fn save(
     (outputs, derived): (&[PathBuf], &film_files::Derived),
     film: &Film,
     id: &FilmId,
-    auto: Option<&Choice>,
 ) -> anyhow::Result<Saved> {
     let mut targets: Vec<PathBuf> = Vec::new();
     if film.passes > 0 {
         targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
     }
-    let opts = film_files::output_options(id, auto)?;
+    let opts = film_files::output_options(id, &film.auto_settings)?;
     let is_film = |p: &PathBuf| is_film_path(p) || args.checkpoint.as_ref() == Some(p);
     let mut image = None;
     let mut failed = Vec::new();
