@@ -207,3 +207,60 @@ def test_auto_bound_reads_the_pilots_model(brume):
     vc = (a / s + b / n + c / (s * n)) * (d * s + e * n + f * s * n)
     bound = (math.sqrt(a * d) + math.sqrt(b * e) + math.sqrt(c * f)) ** 2
     assert bound * (1 - 1e-9) <= vc < 1.05 * bound
+
+
+def test_per_bin_medium_is_grey():
+    """density_check.py --per-bin renders each film bin alone: the medium of one bin is grey,
+    with that bin's coefficients (no spectral weights in Mitsuba's paths); the whole spectrum
+    keeps the spectral medium."""
+    import tomllib
+
+    import density_media
+    import mitsuba_scene
+
+    scene = ROOT / "scenes" / "chromatic-fog.toml"
+    desc = tomllib.loads(scene.read_text())
+    grid = mitsuba_scene.Grid(desc.get("film", {}))
+    fog = desc["media"]["fog"]
+    st, al = density_media.coefficients(desc, scene.parent, fog, grid)
+    # Rayleigh fog, sigma_s = 0.5 /m at 550 nm as lambda^-4, no absorption: each bin differs.
+    assert len(np.unique(st)) == grid.n and np.all(al == 1.0)
+    for b in (0, 13, grid.n - 1):
+        m = mitsuba_scene.medium(desc, scene.parent, fog, grid, [b])
+        assert m["sigma_t"] == pytest.approx(float(st[b])) and m["albedo"] == pytest.approx(1.0)
+        assert isinstance(m["sigma_t"], float)
+    # 550 nm lies in bin 13 of 32 over 380-780 nm (537.5-550): close to 0.5 /m.
+    assert 0.5 < st[13] < 0.5 * (537.5 / 550.0) ** -4 * 1.001
+    whole = mitsuba_scene.medium(desc, scene.parent, fog, grid)
+    assert not isinstance(whole["sigma_t"], float)
+    # A group whose bins differ keeps the spectral medium.
+    assert not isinstance(mitsuba_scene.medium(desc, scene.parent, fog, grid, [3, 4])["sigma_t"], float)
+
+
+def test_per_bin_splits_each_lights_power():
+    """per_bin.py gives each light of a one-bin render its spectrum's share of that bin: the
+    shares of every bin add up to the light's power, follow D65's bin averages, and a light
+    given in photometric units is refused (its share would need the bins' luminous efficacy)."""
+    import tomllib
+
+    import mitsuba_scene
+    import per_bin
+
+    scene = ROOT / "scenes" / "chromatic-fog.toml"
+    desc = tomllib.loads(scene.read_text())
+    grid = mitsuba_scene.Grid(desc.get("film", {}))
+    power = float(desc["lights"][0]["power"])
+    got = []
+    for i in range(grid.n):
+        (edit,) = per_bin.light_sets(desc, scene.parent, grid, i)
+        key, value = edit.split("=")
+        assert key == "lights.0.power"
+        got.append(float(value))
+    got = np.array(got)
+    assert got.sum() == pytest.approx(power, rel=1e-9)
+    # D65 is bluer than flat: its 455-467.5 nm bin holds more than its 380-392.5 nm one.
+    assert got[6] > got[0] > 0
+    photometric = {**desc, "lights": [{**desc["lights"][0], "luminous_flux": 1000.0}]}
+    del photometric["lights"][0]["power"]
+    with pytest.raises(SystemExit, match="luminous_flux"):
+        per_bin.light_sets(photometric, scene.parent, grid, 0)

@@ -10,7 +10,11 @@ variant needs DRJIT_LIBLLVM_PATH, e.g. /usr/lib/x86_64-linux-gnu/libLLVM-19.so f
   mitsuba SCENE --out DIR  K independent Mitsuba renders (--renders K, --spp N each, other seeds):
                            DIR/mitsuba-K.exr, their mean and per-pixel standard error
                            (mitsuba-mean.exr, mitsuba-se.exr: sd over renders / sqrt(K)) and
-                           mitsuba.json (spp, seconds, bin groups).
+                           mitsuba.json (spp, seconds, bin groups). --per-bin: one grey render
+                           per film bin, every medium with that bin's coefficients and every light
+                           with only that bin's light, summed (no spectral weights in any path; a
+                           bin's render wastes the wavelengths Mitsuba samples outside it, so it is
+                           slow: a check, not a reference).
   brume SCENE --out DIR    J brume renders of other seeds (--renders J --passes P): DIR/brume-J.exr.
   check SCENE --mitsuba DIR --brume A.exr [B.exr ...]
                            the per-region table below (and --out PREFIX: PREFIX.json, and
@@ -209,6 +213,10 @@ def mitsuba_renders(a) -> None:
     desc = tomllib.loads(a.scene.read_text())
     grid = mitsuba_scene.Grid(desc.get("film", {}))
     groups = density_media.bin_groups(desc, a.scene.parent, grid) or [None]
+    if a.per_bin:
+        # One grey render per film bin: no spectral weights in any path (a check of the
+        # integrators' spectral sampling, e.g. chromatic-fog's volpath against volpathmis).
+        groups = [[i] for i in range(grid.n)]
     for name, m in desc.get("media", {}).items():
         if "density" in m:
             print(f"medium {name}: {m['density']['type']}: {density_media.interpolation_bound(desc, name)}", flush=True)
@@ -373,6 +381,7 @@ def main() -> None:
     mt.add_argument("--seed", type=int, default=1)
     mt.add_argument("--variant", default="llvm_ad_spectral")
     mt.add_argument("--integrator", choices=list(mitsuba_scene.INTEGRATORS), default="volpath")
+    mt.add_argument("--per-bin", action="store_true", help="one grey render per film bin (every medium), summed")
     bt = sub.add_parser("brume")
     bt.add_argument("scene", type=Path)
     bt.add_argument("--out", type=Path, required=True)

@@ -293,8 +293,19 @@ def _coefficient_spectrum(bins: np.ndarray, grid: Grid):
     return irregular(bins, grid, 1.0, outside="clamp")
 
 
-def medium(desc: dict, base: Path, m: dict, grid: Grid) -> dict:
-    """Mitsuba's `homogeneous` medium for brume medium `m` (sigma_s, sigma_a, g)."""
+def medium(desc: dict, base: Path, m: dict, grid: Grid, bins: list[int] | None = None) -> dict:
+    """Mitsuba's `homogeneous` medium for brume medium `m` (sigma_s, sigma_a, g). With `bins`
+    (film bins whose coefficients are equal), the grey medium of those bins: a render of only
+    their light then carries no spectral weights at all (density_check.py --per-bin)."""
+    if bins is not None:
+        import density_media
+
+        st, al = density_media.coefficients(desc, base, m, grid)
+        if np.all(st[bins] == st[bins[0]]) and np.all(al[bins] == al[bins[0]]):
+            return {"type": "homogeneous", "sigma_t": float(st[bins[0]]), "albedo": float(al[bins[0]]),
+                    "phase": {"type": "hg", "g": m.get("g", 0.0)}}
+        # Coefficients that differ within the group: the spectral medium (the lights carry
+        # only the group's light anyway).
     unsupported = [k for k in ("phase", "droplets", "visibility", "albedo") if k in m]
     if unsupported:
         raise NotImplementedError(f"medium keys {unsupported} are not translated")
@@ -550,7 +561,7 @@ def load(
         if "density" in m:
             d[f"medium_{name}"] = density_media.heterogeneous(mi, desc, base, name, grid, bins)
         else:
-            d[f"medium_{name}"] = medium(desc, base, m, grid)
+            d[f"medium_{name}"] = medium(desc, base, m, grid, bins)
 
     boxes = [s for s in desc.get("shapes", []) if s["type"] == "box" and "interior" in s]
 
