@@ -298,8 +298,6 @@ def medium(desc: dict, base: Path, m: dict, grid: Grid, bins: list[int] | None =
     (film bins whose coefficients are equal), the grey medium of those bins: a render of only
     their light then carries no spectral weights at all (density_check.py --per-bin)."""
     if bins is not None:
-        import density_media
-
         st, al = density_media.coefficients(desc, base, m, grid)
         if np.all(st[bins] == st[bins[0]]) and np.all(al[bins] == al[bins[0]]):
             return {"type": "homogeneous", "sigma_t": float(st[bins[0]]), "albedo": float(al[bins[0]]),
