@@ -250,9 +250,10 @@ def test_per_bin_splits_each_lights_power():
     desc = tomllib.loads(scene.read_text())
     grid = mitsuba_scene.Grid(desc.get("film", {}))
     power = float(desc["lights"][0]["power"])
+    shares = per_bin.light_shares(desc, scene.parent, grid)
     got = []
     for i in range(grid.n):
-        (edit,) = per_bin.light_sets(desc, scene.parent, grid, i)
+        (edit,) = per_bin.light_sets(shares, i)
         key, value = edit.split("=")
         assert key == "lights.0.power"
         got.append(float(value))
@@ -263,4 +264,4 @@ def test_per_bin_splits_each_lights_power():
     photometric = {**desc, "lights": [{**desc["lights"][0], "luminous_flux": 1000.0}]}
     del photometric["lights"][0]["power"]
     with pytest.raises(SystemExit, match="luminous_flux"):
-        per_bin.light_sets(photometric, scene.parent, grid, 0)
+        per_bin.light_shares(photometric, scene.parent, grid)

@@ -30,21 +30,27 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import mitsuba_scene  # noqa: E402
 from compare import read_rgb, write_rgb  # noqa: E402
+from density_check import LUMA  # noqa: E402
 
 RADIANT = ("power", "irradiance")
 OTHER = ("luminous_flux", "illuminance", "intensity", "profile")
 
 
-def light_sets(desc: dict, base: Path, grid: mitsuba_scene.Grid, i: int) -> list[str]:
-    """brume --set edits giving each light its share of bin `i`."""
-    sets = []
+def light_shares(desc: dict, base: Path, grid: mitsuba_scene.Grid) -> list[tuple[str, float, np.ndarray]]:
+    """Per light: its amount's key, the amount, and its spectrum's share of each film bin."""
+    out = []
     for k, light in enumerate(desc.get("lights", [])):
         keys = [key for key in light if key in RADIANT]
         if any(key in light for key in OTHER) or len(keys) != 1:
             raise SystemExit(f"lights.{k}: needs exactly one amount of {RADIANT} and no {OTHER} (has {sorted(light)})")
-        share = mitsuba_scene.light_spectrum(desc, base, light.get("spectrum"), grid)[i] * grid.width
-        sets.append(f"lights.{k}.{keys[0]}={float(light[keys[0]]) * float(share)!r}")
-    return sets
+        shares = mitsuba_scene.light_spectrum(desc, base, light.get("spectrum"), grid) * grid.width
+        out.append((keys[0], float(light[keys[0]]), shares))
+    return out
+
+
+def light_sets(shares: list[tuple[str, float, np.ndarray]], i: int) -> list[str]:
+    """brume --set edits giving each light (of `light_shares`) its share of bin `i`."""
+    return [f"lights.{k}.{key}={amount * float(s[i])!r}" for k, (key, amount, s) in enumerate(shares)]
 
 
 def main() -> None:
@@ -59,10 +65,12 @@ def main() -> None:
     a = ap.parse_args()
     desc = tomllib.loads(a.scene.read_text())
     grid = mitsuba_scene.Grid(desc.get("film", {}))
-    if any("line" in str(light.get("spectrum", "")) for light in desc.get("lights", [])):
+    spectra = [light.get("spectrum") for light in desc.get("lights", [])]
+    if any(isinstance(sp, dict) and ("line" in sp or "lines" in sp) for sp in spectra):
         raise SystemExit("spectral lines add bins of their own: not split here")
     if any("emit" in shape for shape in desc.get("shapes", [])):
         raise SystemExit("emitting shapes: not split here")
+    shares = light_shares(desc, a.scene.parent, grid)
     a.out.mkdir(parents=True, exist_ok=True)
     for k in range(a.renders):
         total = None
@@ -72,13 +80,13 @@ def main() -> None:
             cmd = [a.brume, "render", str(a.scene), "--seed", str(a.seed + k), "--passes", str(a.passes), "--quiet",
                    "-o", str(out), "--set", "film.bins=1", "--set", f"film.lambda_min={float(lo)!r}",
                    "--set", f"film.lambda_max={float(hi)!r}"]
-            for s in a.set + light_sets(desc, a.scene.parent, grid, i):
+            for s in a.set + light_sets(shares, i):
                 cmd += ["--set", s]
             subprocess.run(cmd, check=True)
             img = read_rgb(out)
             total = img if total is None else total + img
         write_rgb(a.out / f"brume-{k}.exr", total)
-        y = float((total @ np.array([0.2126, 0.7152, 0.0722])).sum())
+        y = float((total @ LUMA).sum())
         print(f"render {k + 1}/{a.renders}: {grid.n} bins, image sum of Y {y:.6g}", flush=True)
 
 
