@@ -106,7 +106,7 @@ def read_rgb(path: Path) -> np.ndarray:
 def write_rgb(path: Path, rgb: np.ndarray) -> None:
     """A float32 RGB EXR (written beside and renamed, so a crash leaves no half file)."""
     tmp = path.with_name(path.name + ".tmp.exr")
-    with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION}, {"RGB": rgb.astype(np.float32)}) as f:
+    with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION}, {"RGB": np.ascontiguousarray(rgb, dtype=np.float32)}) as f:
         f.write(str(tmp))
     tmp.replace(path)
 
