@@ -106,7 +106,7 @@ def read_exr(path: Path) -> dict[str, np.ndarray]:
 
 
 def write_exr(path: Path, rgb: np.ndarray) -> None:
-    with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION}, {"RGB": rgb.astype(np.float32)}) as f:
+    with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION}, {"RGB": np.ascontiguousarray(rgb, dtype=np.float32)}) as f:
         f.write(str(path))
 
 
@@ -221,7 +221,7 @@ def mitsuba_renders(a) -> None:
         if "density" in m:
             print(f"medium {name}: {m['density']['type']}: {density_media.interpolation_bound(desc, name)}", flush=True)
     print(f"bin groups: {groups if groups != [None] else 'one render (grey media)'}", flush=True)
-    scenes = [mi.load_dict(mitsuba_scene.load(a.scene, a.spp, integrator=a.integrator, spot_profile="exact", bins=g))
+    scenes = [mi.load_dict(mitsuba_scene.load(a.scene, a.spp, integrator=a.integrator, spot_profile=a.spot_profile, bins=g))
               for g in groups]
     a.out.mkdir(parents=True, exist_ok=True)
     imgs, cpu0, wall0 = [], time.process_time(), time.perf_counter()
@@ -236,7 +236,7 @@ def mitsuba_renders(a) -> None:
     stack = np.stack(imgs)
     write_exr(a.out / "mitsuba-mean.exr", stack.mean(0))
     write_exr(a.out / "mitsuba-se.exr", stack.std(0, ddof=1) / np.sqrt(len(imgs)))
-    meta = {"scene": str(a.scene), "variant": a.variant, "integrator": a.integrator, "renders": a.renders,
+    meta = {"scene": str(a.scene), "variant": a.variant, "integrator": a.integrator, "spot_profile": a.spot_profile, "renders": a.renders,
             "spp_per_render_per_group": a.spp, "bin_groups": groups, "seed": a.seed,
             "wall_s": time.perf_counter() - wall0, "cpu_s": time.process_time() - cpu0}
     (a.out / "mitsuba.json").write_text(json.dumps(meta, indent=2))
@@ -382,6 +382,8 @@ def main() -> None:
     mt.add_argument("--variant", default="llvm_ad_spectral")
     mt.add_argument("--integrator", choices=list(mitsuba_scene.INTEGRATORS), default="volpath")
     mt.add_argument("--per-bin", action="store_true", help="one grey render per film bin (every medium), summed")
+    mt.add_argument("--spot-profile", choices=list(mitsuba_scene.SPOT_PROFILES), default="exact",
+                    help="spots' soft edge: brume's (a projected texture) or Mitsuba's own ramp")
     bt = sub.add_parser("brume")
     bt.add_argument("scene", type=Path)
     bt.add_argument("--out", type=Path, required=True)
