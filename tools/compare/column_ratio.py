@@ -7,7 +7,9 @@ crosses the image (chromatic-fog's spot beam runs along the rows).
     python tools/compare/column_ratio.py MITSUBA_DIR BRUME_DIR [--rows 40:88] [--bands 44:48,48:56,...]
 
 A folder may also hold the two halves of a protocol reference renamed mitsuba-0.exr and
-mitsuba-1.exr (two renders: a rough standard error).
+mitsuba-1.exr (two renders: a rough standard error), or light_trace.py's renders
+(reference-K.exr), which are taken when there are no mitsuba-K.exr, or single_scatter.py's
+quadrature (one reference-0.exr, no noise of its own).
 """
 from __future__ import annotations
 
@@ -43,15 +45,18 @@ def main() -> None:
     a = ap.parse_args()
     r0, r1 = (int(x) for x in a.rows.split(":"))
     bands = [tuple(int(x) for x in b.split(":")) for b in a.bands.split(",")]
-    m = band_sums(sorted(glob.glob(str(a.mitsuba / "mitsuba-[0-9]*.exr"))), slice(r0, r1), bands)
+    refs = sorted(glob.glob(str(a.mitsuba / "mitsuba-[0-9]*.exr"))) or sorted(
+        glob.glob(str(a.mitsuba / "reference-[0-9]*.exr")))
+    m = band_sums(refs, slice(r0, r1), bands)
     b = band_sums(sorted(glob.glob(str(a.brume / "brume-*.exr"))), slice(r0, r1), bands)
-    if len(m) < 2 or len(b) < 2:
-        raise SystemExit("need 2 or more renders of each")
+    if len(m) < 1 or len(b) < 2:
+        raise SystemExit("need a reference and 2 or more brume renders")
     for j, (c0, c1) in enumerate(bands):
         mm, bb = m[:, j].mean(), b[:, j].mean()
         r = bb / mm
-        se = r * np.hypot(m[:, j].std(ddof=1) / np.sqrt(len(m)) / mm, b[:, j].std(ddof=1) / np.sqrt(len(b)) / bb)
-        print(f"columns {c0:3d}-{c1:3d}: brume / Mitsuba {r:.4f} +- {se:.4f} (z {(r - 1) / se:+.1f})")
+        m_se = m[:, j].std(ddof=1) / np.sqrt(len(m)) if len(m) > 1 else 0.0  # one: a quadrature
+        se = r * np.hypot(m_se / mm, b[:, j].std(ddof=1) / np.sqrt(len(b)) / bb)
+        print(f"columns {c0:3d}-{c1:3d}: brume / reference {r:.4f} +- {se:.4f} (z {(r - 1) / se:+.1f})")
 
 
 if __name__ == "__main__":
