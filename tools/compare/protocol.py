@@ -15,7 +15,9 @@ favoured brume in several ways at once):
   against an independent reference that bias is error, and it is what grows brume's ratio with
   time. The reference is Mitsuba's long render with its best sampler (--reference mitsuba), or
   brume's own long run where Mitsuba cannot converge (fog-room-laser's 2 mm laser, compare.py's
-  docstring: --reference brume, with the scene's own settings). Either is rendered as two
+  docstring: --reference brume, with the scene's own settings), or two halves rendered
+  elsewhere (--reference files --reference-halves A B: light_trace.py's independent light
+  tracer for spot-lit fog, where Mitsuba reads high near the spot). Each is rendered as two
   independent halves A, B (other seeds); the reference is their mean, and its own noise,
   E[(A - B)^2] / 4 per pixel, is subtracted from every MSE (recomputed on 4x4-binned images for
   the binned metric). Mitsuba's light spectra are in brume's units (mitsuba_scene.py), so the
@@ -121,11 +123,13 @@ def key_folder(work: Path, kind: str, key: dict) -> Path:
     return work / f"{kind}-{h}"
 
 
-def render_reference(source: str, seconds: float, peer: Peer | None, brume_ref) -> tuple[list, list]:
-    """Two independent halves of `seconds` in all: (images, records)."""
+def render_reference(source: str, seconds: float, peer: Peer | None, brume_ref, files=None) -> tuple[list, list]:
+    """Two independent halves of `seconds` in all, or the two given files: (images, records)."""
     imgs, recs = [], []
     for h in range(2):
-        if source == "mitsuba":
+        if source == "files":
+            img, rec = read_rgb(files[h]), {"file": str(files[h]), "sha256": file_sha(files[h]), "wall_s": 0.0}
+        elif source == "mitsuba":
             img, rec = peer.render(seconds / 2, M_REF + h * 5_000_000)
         else:
             img, rec = brume_ref(seconds / 2, B_REF + h)
@@ -135,13 +139,13 @@ def render_reference(source: str, seconds: float, peer: Peer | None, brume_ref) 
     return imgs, recs
 
 
-def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_ref) -> dict:
+def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_ref, files=None) -> dict:
     """The reference (mean of two halves) and its noise per metric, cached under its key."""
     folder = key_folder(work, "reference", key)
     names = ["half-a.exr", "half-b.exr"]
     rec = cached(folder, key, names)
     if rec is None:
-        imgs, recs = render_reference(source, seconds, peer, brume_ref)
+        imgs, recs = render_reference(source, seconds, peer, brume_ref, files)
         folder.mkdir(parents=True, exist_ok=True)
         for img, n in zip(imgs, names):
             write_rgb(folder / n, img)
@@ -270,7 +274,10 @@ def args() -> argparse.Namespace:
     ap.add_argument("--times", type=float, nargs="+", default=[10.0], help="wall-clock budgets, s")
     ap.add_argument("--runs", type=int, default=5, help="runs (other seeds) per budget")
     ap.add_argument("--set", action="append", default=[], help="KEY=VALUE edit of the scene for BOTH renderers (repeatable)")
-    ap.add_argument("--reference", choices=["mitsuba", "brume"], default="mitsuba", help="source of the reference (brume: fog-room-laser)")
+    ap.add_argument("--reference", choices=["mitsuba", "brume", "files"], default="mitsuba",
+                    help="source of the reference (brume: fog-room-laser; files: --reference-halves)")
+    ap.add_argument("--reference-halves", type=Path, nargs=2, default=None, metavar=("A", "B"),
+                    help="two independent halves rendered elsewhere (light_trace.py), in brume's units, of the scene as edited by --set")
     ap.add_argument("--ref-seconds", type=float, default=600.0, help="reference, wall s in all (two halves)")
     ap.add_argument("--brume-ref-set", action="append", default=[], help="brume --set for a brume reference only")
     ap.add_argument("--brume-settings", choices=["default", "scene"], default="default", help="brume's [integrator]: stripped (defaults) or the scene's (tuned)")
@@ -286,6 +293,8 @@ def args() -> argparse.Namespace:
     ap.add_argument("--no-fixed-cost", action="store_true", help="skip measuring brume's start-up and pilot cost")
     a = ap.parse_args()
     chunk_ok(a.chunk_spp)
+    if (a.reference == "files") != (a.reference_halves is not None):
+        ap.error("--reference files and --reference-halves A B go together")
     return a
 
 
@@ -335,6 +344,8 @@ def choose_peer(a, s: Setup, mi, ps: dict) -> tuple[Peer, dict]:
 
 def reference_key(a, s: Setup, ps: dict) -> dict:
     key = {"scene": str(a.scene), "scene_sha": s.scene_sha, "sets": a.set, "source": a.reference, "seconds": a.ref_seconds}
+    if a.reference == "files":
+        return {**key, "seconds": None, "halves_sha256": [file_sha(p) for p in a.reference_halves]}
     if a.reference == "mitsuba":
         return {**key, **ps, "sampler": s.peer.sampler}
     return {**key, "brume_sha": file_sha(a.brume), "brume_settings": "scene", "brume_ref_set": a.brume_ref_set}
@@ -417,7 +428,7 @@ def run_all(a, desc: dict, path: Path, info: dict) -> None:
     except NotImplementedError as e:
         raise SystemExit(f"{a.scene}: not mapped to Mitsuba 3: {e}") from e
     print(f"Mitsuba: {ps['integrator']}, sampler {s.peer.sampler}, {a.chunk_spp} spp per call", flush=True)
-    ref = reference(s.work, reference_key(a, s, ps), a.reference, a.ref_seconds, s.peer, s.brume_ref)
+    ref = reference(s.work, reference_key(a, s, ps), a.reference, a.ref_seconds, s.peer, s.brume_ref, a.reference_halves)
     fixed = None
     if not a.no_fixed_cost:
         fixed = brume_fixed_cost(a.brume, path, s.work / "brume-fixed.exr", s.brume_sets)
