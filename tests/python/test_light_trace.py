@@ -82,17 +82,23 @@ def assert_agree(runs: np.ndarray, ref: np.ndarray, ref_se: np.ndarray, z_max: f
     assert np.all(np.hypot(se, ref_se) < 0.03 * ref), np.hypot(se, ref_se) / ref
 
 
-def test_light_tracer_single_scattering_matches_quadrature(tmp_path):
+@pytest.mark.parametrize("light", ["spot", "point"])
+def test_light_tracer_single_scattering_matches_quadrature(tmp_path, light):
     """The tracer's first collisions (order 1) against the quadrature: the camera's importance,
-    the spot's profile and power, the transmittances and the film's Y weights of one against
+    the light's profile and power, the transmittances and the film's Y weights of one against
     those of the other (the quadrature integrates along the camera rays, the tracer splats
-    photons: nothing shared but the scene)."""
+    photons: nothing shared but the scene). The point light stands where the spot does."""
     import light_trace as lt
     import single_scatter as ss
 
-    scene = lt.load(scene_file(tmp_path, 32, MIDDLE))
+    path = scene_file(tmp_path, 32, MIDDLE)
+    if light == "point":
+        text = path.read_text().replace('type = "spot"', 'type = "point"')
+        path.write_text(text.replace("angle = 4.0\n", "").replace("soft_edge = 1.0\n", "").replace("direction = [1.0, 0.0, 0.0]\n", ""))
+    scene = lt.load(path)
     quad = bands(ss.single_scatter_y(scene, nsub=8), MIDDLE)
-    runs = np.array([bands(lt.render(scene, 1e5, seed)[0, 1], MIDDLE) for seed in range(4)])
+    photons = 1e5 if light == "spot" else 6e5  # a point light sends most photons away from the view
+    runs = np.array([bands(lt.render(scene, photons, seed)[0, 1], MIDDLE) for seed in range(4)])
     assert_agree(runs, quad, np.zeros_like(quad), 4.0)
 
 

@@ -78,7 +78,7 @@ def single_scatter(scene: Scene, light: Light, b: int, nsub: int = 16, nodes: in
             v = x - light.pos
             dist = np.linalg.norm(v, axis=-1)
             u = v / dist[..., None]
-            prof = light.profile(u @ light.axis) if light.axis is not None else light.profile(dist)
+            prof = light.profile(u @ light.axis if light.axis is not None else np.ones(dist.shape))
             ltn, ltf = box.interval(np.repeat(light.pos[None], u[..., 0].size, 0), u.reshape(-1, 3))
             t_light = np.clip(np.minimum(ltf, dist.ravel()) - ltn, 0, None).reshape(dist.shape)
             f = ss * hg(np.sum(u * -d[:, None], axis=-1), g) * prof * np.exp(-st * (tt - tn[:, None]) - st * t_light)
