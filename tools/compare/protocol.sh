@@ -33,7 +33,7 @@ measure fog-cube-albedo-0.9 scenes/fog-cube.toml --set media.fog.sigma_s=0.9 --s
 measure chromatic-cube tools/compare/scenes/chromatic-cube.toml --times 10
 # The spot 5 cm from the fog: Mitsuba reads high there (0.7 % of the image, 4 % near the spot;
 # docs/performance.md, "Where chromatic-fog's 1 % goes"), so the reference is the independent
-# light tracer's: two halves of 3e8 photons, side by side (about 15 min on 2 cores).
+# light tracer's: two halves of 3e8 photons, side by side (both done within 18 min on 2 cores with other work running).
 if [[ "$MITSUBA_PY" != echo ]]; then
     "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" scenes/chromatic-fog.toml --photons 3e8 --renders 1 --seed 1000 --out "$OUT/cf-lt1" &
     "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" scenes/chromatic-fog.toml --photons 3e8 --renders 1 --seed 2000 --out "$OUT/cf-lt2"
