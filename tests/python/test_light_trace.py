@@ -140,6 +140,10 @@ def test_light_tracer_refuses_what_it_cannot_trace(tmp_path):
         ('type = "spot"', 'type = "laser"', "lights[0]"),
         ('sigma_s = 1.0', 'sigma_s = 1.0\ndensity = { type = "constant", value = 1.0 }', "media.fog"),
         ("[film]", '[film]\ncolour_space = "acescg"', "film"),
+        ("position = [-1.55, 0.0, 0.0]\n", "", "lights[0]: `position` is missing"),
+        ('interior = "fog"', 'interior = "smoke"', "media: `smoke` is missing"),
+        ("[[lights]]", "[[lightz]]", "lights: none"),
+        ("[film]", "[film", "not valid TOML"),
     ]:
         p = tmp_path / "bad.toml"
         p.write_text(text.replace(old, new, 1))

@@ -228,14 +228,26 @@ class Scene:
     max_depth: int
 
 
+def _need(table: dict, key: str, where: str):
+    """table[key], or a refusal naming where it is missing."""
+    if not isinstance(table, dict) or key not in table:
+        raise Refused(f"{where}: `{key}` is missing")
+    return table[key]
+
+
 def load(path: Path) -> Scene:
-    desc = tomllib.loads(Path(path).read_text())
+    try:
+        desc = tomllib.loads(Path(path).read_text())
+    except OSError as e:
+        raise Refused(f"cannot read it: {e.strerror}") from e
+    except tomllib.TOMLDecodeError as e:
+        raise Refused(f"not valid TOML: {e}") from e
     film = desc.get("film", {})
     if (film.get("colour_space", "srgb"), film.get("units", "radiometric"), str(film.get("observer", "1931"))) != (
             "srgb", "radiometric", "1931"):
         raise Refused("film: only the default colour_space (srgb), units (radiometric) and observer (1931)")
     edges = bin_edges(film)
-    cam = desc["camera"]
+    cam = desc.get("camera", {})
     if cam.get("type", "perspective") != "perspective":
         raise Refused("camera.type: only perspective")
     pos = np.array(cam.get("position", [0.0, 0.0, 5.0]), float)
@@ -248,18 +260,19 @@ def load(path: Path) -> Scene:
         t = s.get("transform", {}) or {}
         if any(k not in ("rotate", "translate") for k in t) or "scale" in s:
             raise Refused(f"shapes[{i}].transform: only rotate and translate")
-        if s["type"] == "box":
+        kind = _need(s, "type", f"shapes[{i}]")
+        if kind == "box":
             if any(abs(a) > 0 for a in t.get("rotate", [0, 0, 0])) or "material" in s:
                 raise Refused(f"shapes[{i}]: only an axis-aligned, index-matched box")
             c, half = np.array(t.get("translate", [0, 0, 0]), float), np.array(s.get("size", [1, 1, 1]), float) / 2
-            m = desc["media"][s["interior"]]
+            m = _need(desc.get("media", {}), _need(s, "interior", f"shapes[{i}]"), "media")
             if "density" in m or "phase" in m:
                 raise Refused(f"media.{s['interior']}: only homogeneous Henyey-Greenstein media")
             sig = [spectrum(m.get(k, 0.0), desc, Path(path).parent, edges, f"media.{s['interior']}.{k}")
                    for k in ("sigma_s", "sigma_a")]
             boxes.append(Box(c - half, c + half, sig[0], sig[1], float(m.get("g", 0.0))))
-        elif s["type"] == "quad":
-            mat = desc["materials"][s["material"]]
+        elif kind == "quad":
+            mat = _need(desc.get("materials", {}), _need(s, "material", f"shapes[{i}]"), "materials")
             if mat.get("type") != "lambert" or not isinstance(mat.get("albedo"), (int, float)):
                 raise Refused(f"materials.{s['material']}: only lambert with a constant albedo")
             R = rotation(t.get("rotate", [0, 0, 0]))
@@ -267,22 +280,24 @@ def load(path: Path) -> Scene:
             quads.append(Quad(np.array(t.get("translate", [0, 0, 0]), float), R[:, 2], R[:, 0], R[:, 1],
                               (sx / 2, sy / 2), float(mat["albedo"])))
         else:
-            raise Refused(f"shapes[{i}].type: {s['type']!r} (only box and quad)")
+            raise Refused(f"shapes[{i}].type: {kind!r} (only box and quad)")
     if len(boxes) != 1:
         raise Refused("shapes: exactly one fog box")
     lights = []
     for i, li in enumerate(desc.get("lights", [])):
-        if li["type"] not in ("spot", "point") or "power" not in li or "profile" in li:
+        if _need(li, "type", f"lights[{i}]") not in ("spot", "point") or "power" not in li or "profile" in li:
             raise Refused(f"lights[{i}]: only spot and point lights given a `power`, without a profile")
         sp = spectrum(li.get("spectrum", "D65"), desc, Path(path).parent, edges, f"lights[{i}].spectrum")
         per_nm = li["power"] * sp / float(np.sum(sp * np.diff(edges)))
         if li["type"] == "spot":
-            edge = min(max(li["angle"], 0.01), 180.0)
+            edge = min(max(_need(li, "angle", f"lights[{i}]"), 0.01), 180.0)
             full = min(max(edge - max(li.get("soft_edge", 0.0), 0.0), 0.0), edge)
-            lights.append(Light(np.array(li["position"], float), _basis(li["direction"]),
+            lights.append(Light(np.array(_need(li, "position", f"lights[{i}]"), float), _basis(_need(li, "direction", f"lights[{i}]")),
                                 math.cos(math.radians(full)), math.cos(math.radians(edge)), per_nm))
         else:
-            lights.append(Light(np.array(li["position"], float), None, 1.0, -1.0, per_nm))
+            lights.append(Light(np.array(_need(li, "position", f"lights[{i}]"), float), None, 1.0, -1.0, per_nm))
+    if not lights:
+        raise Refused("lights: none to trace (the image would be black)")
     return Scene(camera, boxes[0], quads, lights, edges, int(desc.get("integrator", {}).get("max_depth", 32)))
 
 
