@@ -36,7 +36,9 @@ pub use estimator::Estimator;
 pub use memory::{MemoryEstimate, format_bytes};
 pub use pass::{Budget, MAX_PASS_END, Renderer, Stats};
 pub use radius::{Radii, RadiusSchedule, Shrink};
-pub use settings::{DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, VolumeKind};
+pub use settings::{
+    DEFAULT_GATHER_BYTES, DirectMode, GatherMode, IntegratorDesc, Placement, VolumeKind,
+};
 
 use crate::medium::MediumError;
 use crate::world::Scene;

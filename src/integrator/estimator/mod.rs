@@ -154,7 +154,7 @@ impl Estimator {
         media: &[Medium],
     ) -> Result<Self, MediumError> {
         Ok(match desc.volume {
-            VolumeKind::Spheres => Estimator::Spheres(Spheres::new(q, media)?),
+            VolumeKind::Spheres => Estimator::Spheres(Spheres::new(q, media, desc.placement())?),
             VolumeKind::Cylinder => Estimator::Cylinder(Cylinder),
             VolumeKind::CylinderTruncated => {
                 Estimator::TruncatedCylinder(TruncatedCylinder::new(desc.channels()))

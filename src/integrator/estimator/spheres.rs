@@ -14,6 +14,7 @@ use super::{CameraSegment, ForwardSegment, VolumeEstimator, capsule_bounds};
 use crate::integrator::boundary::PlaneTable;
 use crate::integrator::exp::exp_nonpositive;
 use crate::integrator::record::{SegmentRecord, VolumeRecord};
+use crate::integrator::settings::Placement;
 use crate::medium::{Medium, MediumError, MultiSphereWalk, WalkEnd, relative_extinction};
 use crate::spectrum::Spectrum;
 
@@ -22,14 +23,17 @@ use crate::spectrum::Spectrum;
 pub struct Spheres {
     /// Per medium: the walk with that medium's q.
     walks: Vec<MultiSphereWalk>,
+    /// Where the spheres go: the walk's own sub-steps or stratified (`integrator.placement`).
+    placement: Placement,
     /// Per medium: `st_l - st_min` (see `relative_extinction`), None when grey (all factors 1).
     extinction: Vec<Option<Spectrum>>,
 }
 
 impl Spheres {
-    /// Spheres with `q[m]` in medium `m` of `media`.
-    pub fn new(q: &[f32], media: &[Medium]) -> Result<Self, MediumError> {
+    /// Spheres with `q[m]` in medium `m` of `media`, placed as `placement` says.
+    pub fn new(q: &[f32], media: &[Medium], placement: Placement) -> Result<Self, MediumError> {
         Ok(Self {
+            placement,
             walks: q
                 .iter()
                 .map(|&q| MultiSphereWalk::new(q))
@@ -59,7 +63,19 @@ impl VolumeEstimator for Spheres {
         leave: impl FnMut(f32, f32),
     ) -> WalkEnd {
         match self.walks.get(cam.medium_id as usize) {
-            Some(walk) => walk.walk_scaled(cam.medium, (cam.mix, cam.track), cam.len, rng, leave),
+            Some(walk) => {
+                let mut leave = leave;
+                let stratified = match (self.placement, cam.track) {
+                    (Placement::Stratified, None) => {
+                        walk.stratified_scaled(cam.medium, cam.mix, cam.len, rng, &mut leave)
+                    }
+                    // Null collisions have no inverse transmittance to stratify.
+                    (Placement::Stratified, Some(_)) | (Placement::Walk, _) => None,
+                };
+                stratified.unwrap_or_else(|| {
+                    walk.walk_scaled(cam.medium, (cam.mix, cam.track), cam.len, rng, leave)
+                })
+            }
             // Every medium has its walk (`new`): none means no spheres, the path goes on.
             None => {
                 crate::medium::sample_extinction(cam.medium, (cam.mix, cam.track), cam.len, rng)

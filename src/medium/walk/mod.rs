@@ -223,5 +223,7 @@ fn extinction<R: Rng + ?Sized>(
     }
 }
 
+mod stratified;
+
 #[cfg(test)]
 mod tests;

@@ -225,3 +225,204 @@ fn invalid_q_is_an_error() {
         assert!(MultiSphereWalk::new(q).is_err(), "q={q}");
     }
 }
+
+// ----------------------------------------------------------------- stratified spheres
+
+/// `run`'s estimate with stratified spheres (`stratified.rs`) on a segment of length `len`:
+/// per bin, the spheres' readings plus the independently sampled outcome's surface term.
+fn run_stratified(q: f32, pick: ChannelPick, len: f32, rays: usize, seed: u64) -> Acc {
+    let m = medium();
+    let mix = mixture(&m, pick);
+    let walk = MultiSphereWalk::new(q).unwrap();
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let mut acc = Acc::new(N);
+    for _ in 0..rays {
+        let mut est = [0.0f64; N];
+        let end = walk
+            .stratified(&m, &mix, len, &mut rng, |s, w| {
+                for l in 0..N {
+                    est[l] += w[l] as f64 * reading(l, s);
+                }
+            })
+            .expect("every bin has extinction");
+        if let WalkEnd::Transmitted { weight } = end {
+            for l in 0..N {
+                est[l] += weight[l] as f64 * LS[l];
+            }
+        }
+        acc.add(&est);
+    }
+    acc
+}
+
+/// The closed form of `exact` for a segment of any length (`+inf`: no surface term).
+fn exact_len(l: usize, len: f32) -> f64 {
+    let (st, ss) = (ST[l] as f64, (ST[l] * ALB[l]) as f64);
+    let t = len as f64;
+    let surface = if len.is_finite() {
+        (-st * t).exp() * LS[l]
+    } else {
+        0.0
+    };
+    ss * E[l] * (1.0 - (-(st + K[l]) * t).exp()) / (st + K[l]) + surface
+}
+
+/// Unbiased per bin (|z| < 4) for both channel picks, q from one sphere to many, on a finite
+/// and an endless segment.
+#[test]
+fn stratified_spheres_are_unbiased_in_every_bin() {
+    let mut seed = 500;
+    for pick in [ChannelPick::Throughput, ChannelPick::Uniform] {
+        for (q, len) in [(1.0f32, T), (0.3, T), (0.05, T), (0.3, f32::INFINITY)] {
+            seed += 1;
+            let acc = run_stratified(q, pick, len, 100_000, seed);
+            for l in 0..N {
+                let want = exact_len(l, len);
+                let z = acc.z(l, want);
+                assert!(
+                    z.abs() < 4.0,
+                    "{pick:?} q={q} len={len} bin {l}: {} vs {want} (z={z})",
+                    acc.mean(l)
+                );
+            }
+        }
+    }
+}
+
+/// Each segment gets the walk's mean count `(1 - Tmix(T)) / q` rounded to a neighbouring
+/// integer (never below 1), so the count's mean is `max(1, m)` exactly (|z| < 4), and no
+/// segment gets any other count.
+#[test]
+fn stratified_sphere_count_is_the_walks_mean_rounded() {
+    let m = medium();
+    let mix = mixture(&m, ChannelPick::Uniform);
+    let tm = mix.tmix(T) as f64;
+    let mut rng = Pcg64Mcg::seed_from_u64(600);
+    for q in [1.0f32, 0.3, 0.07] {
+        let walk = MultiSphereWalk::new(q).unwrap();
+        let mean = (1.0 - tm) / q as f64;
+        let (lo, hi) = (mean.floor().max(1.0), mean.ceil().max(1.0));
+        let mut acc = Acc::new(1);
+        for _ in 0..50_000 {
+            let mut k = 0.0;
+            walk.stratified(&m, &mix, T, &mut rng, |_, _| k += 1.0);
+            assert!(k == lo || k == hi, "q={q}: {k} spheres, not {lo} or {hi}");
+            acc.add(&[k]);
+        }
+        let want = mean.max(1.0);
+        // A count that never varies (m below 1) has no standard error: compare exactly.
+        if acc.se(0) == 0.0 {
+            assert_eq!(acc.mean(0), want, "q={q}");
+        } else {
+            let z = acc.z(0, want);
+            assert!(z.abs() < 4.0, "q={q}: {} vs {want} (z={z})", acc.mean(0));
+        }
+    }
+}
+
+/// One sphere drawn at random from each segment's K is distributed as the truncated mixture
+/// `p_T(s) = Σ P_l st_l e^{-st_l s} / (1 - e^{-st_l T})` (the density the weights divide by):
+/// chi-square over 20 bins of equal probability, |(X² - 19) / sqrt(2 x 19)| < 5.
+#[test]
+fn stratified_sphere_positions_follow_the_truncated_mixture() {
+    use rand::Rng;
+    let m = medium();
+    for (pick, seed) in [(ChannelPick::Throughput, 700), (ChannelPick::Uniform, 701)] {
+        let mix = mixture(&m, pick);
+        let p = *mix.probabilities();
+        let cdf = |s: f64| -> f64 {
+            (0..N)
+                .map(|l| {
+                    let st = ST[l] as f64;
+                    p[l] as f64 * (1.0 - (-st * s).exp()) / (1.0 - (-st * T as f64).exp())
+                })
+                .sum()
+        };
+        let bins = 20usize;
+        // Edges of equal probability by bisection on the cdf.
+        let edges: Vec<f64> = (1..bins)
+            .map(|i| {
+                let target = i as f64 / bins as f64;
+                let (mut a, mut b) = (0.0, T as f64);
+                for _ in 0..60 {
+                    let c = 0.5 * (a + b);
+                    if cdf(c) < target { a = c } else { b = c }
+                }
+                0.5 * (a + b)
+            })
+            .collect();
+        let walk = MultiSphereWalk::new(0.2).unwrap();
+        let mut rng = Pcg64Mcg::seed_from_u64(seed);
+        let mut pick_rng = Pcg64Mcg::seed_from_u64(seed + 50);
+        let draws = 200_000;
+        let mut counts = vec![0u64; bins];
+        for _ in 0..draws {
+            let mut at = Vec::new();
+            walk.stratified(&m, &mix, T, &mut rng, |s, _| at.push(s as f64));
+            let s = at[pick_rng.random_range(0..at.len())];
+            counts[edges.partition_point(|e| *e <= s)] += 1;
+        }
+        let expect = draws as f64 / bins as f64;
+        let x2: f64 = counts
+            .iter()
+            .map(|&c| (c as f64 - expect).powi(2) / expect)
+            .sum();
+        let df = (bins - 1) as f64;
+        let z = (x2 - df) / (2.0 * df).sqrt();
+        assert!(
+            z.abs() < 5.0,
+            "{pick:?}: X² = {x2:.1} over {df} df (z={z:.2})"
+        );
+    }
+}
+
+/// The point of stratifying: on a smooth reading, the spheres' part of the estimate (the
+/// outcome's surface term left out: it is the same coin for both) has far less variance than
+/// the walk's at the same q (the same mean sphere count). Bound: below half the walk's in
+/// every bin (the measured ratios are printed).
+#[test]
+fn stratified_spheres_have_less_variance_than_the_walk() {
+    let m = medium();
+    let mix = mixture(&m, ChannelPick::Throughput);
+    let walk = MultiSphereWalk::new(0.3).unwrap();
+    let mut rng = Pcg64Mcg::seed_from_u64(801);
+    let (mut strat, mut walked) = (Acc::new(N), Acc::new(N));
+    for _ in 0..50_000 {
+        let mut est = [0.0f64; N];
+        let sum = |est: &mut [f64; N], s: f32, w: &Spectrum| {
+            for l in 0..N {
+                est[l] += w[l] as f64 * reading(l, s);
+            }
+        };
+        walk.stratified(&m, &mix, T, &mut rng, |s, w| sum(&mut est, s, w));
+        strat.add(&est);
+        let mut est = [0.0f64; N];
+        walk.walk(&m, (&mix, None), T, &mut rng, |s, w| sum(&mut est, s, w));
+        walked.add(&est);
+    }
+    for l in 0..N {
+        let ratio = (strat.se(l) / walked.se(l)).powi(2);
+        eprintln!("bin {l}: variance ratio stratified / walk {ratio:.3}");
+        assert!(ratio < 0.5, "bin {l}: ratio {ratio}");
+    }
+}
+
+/// A bin without extinction has no quantiles over an endless segment: the caller keeps the
+/// walk (None), and no random number is drawn.
+#[test]
+fn stratified_spheres_decline_a_bin_without_extinction() {
+    let m = Medium::from_extinction_albedo(&[0.0, 1.0], &[0.5, 0.5], 0.0).unwrap();
+    let mix = Mixture::new(
+        ChannelPick::Uniform,
+        &Spectrum::from_slice(&[1.0, 1.0]),
+        &m,
+        0.1,
+    );
+    let walk = MultiSphereWalk::new(0.5).unwrap();
+    let mut rng = Pcg64Mcg::seed_from_u64(900);
+    let before = rng.clone();
+    let mut spheres = 0;
+    let end = walk.stratified(&m, &mix, 1.0, &mut rng, |_, _| spheres += 1);
+    assert!(end.is_none() && spheres == 0);
+    assert_eq!(rng, before, "no random number drawn");
+}
