@@ -77,42 +77,19 @@ fn smoke_plume_keeps_its_mean() {
     );
 }
 
-/// Mean over pixels of the per-pixel variance (over `RUNS` one-pass renders) of the medium
-/// layer, all bins summed.
-fn medium_variance(s: &Setup) -> f64 {
-    let n = s.grid.n;
-    let per_run: Vec<Vec<f64>> = (0..RUNS)
-        .map(|r| {
-            let img = render(s, 500 + r, 1);
-            let (_, data) = img
-                .layers
-                .iter()
-                .find(|(k, _)| k == "medium")
-                .expect("the film has a medium layer");
-            data.chunks(n)
-                .map(|px| px.iter().map(|&v| v as f64).sum())
-                .collect()
-        })
-        .collect();
-    let pixels = per_run[0].len();
-    let k = RUNS as f64;
-    (0..pixels)
-        .map(|p| {
-            let m = per_run.iter().map(|r| r[p]).sum::<f64>() / k;
-            per_run.iter().map(|r| (r[p] - m).powi(2)).sum::<f64>() / (k - 1.0)
-        })
-        .sum::<f64>()
-        / pixels as f64
-}
-
 /// fog-cube at q = 0.3 with many forward rays, so that the camera side's noise shows: the
 /// stratified spheres' medium layer has at most 0.7 of the walk's variance (a weight or a count
 /// that was still random would not lower it; the measured ratio is printed).
 #[test]
 fn fog_cube_medium_variance_falls() {
     let extra = ["integrator.q=0.3", "integrator.forward_rays=200000"];
-    let strat = medium_variance(&setup("fog-cube.toml", "stratified", &extra));
-    let walk = medium_variance(&setup("fog-cube.toml", "walk", &extra));
+    let strat = layer_variance(
+        &setup("fog-cube.toml", "stratified", &extra),
+        "medium",
+        RUNS,
+        500,
+    );
+    let walk = layer_variance(&setup("fog-cube.toml", "walk", &extra), "medium", RUNS, 500);
     eprintln!(
         "medium variance: walk {walk:.3e}, stratified {strat:.3e} ({:.2}x)",
         strat / walk

@@ -124,6 +124,34 @@ pub fn assert_bins(name: &str, mean: &[f64], se: &[f64], expected: &[f64], z: f6
     }
 }
 
+/// Mean over pixels of the per-pixel variance of layer `layer` ("medium", "surface"), all bins
+/// summed, over `runs` one-pass renders (seeds `seed0..`).
+pub fn layer_variance(s: &Setup, layer: &str, runs: u64, seed0: u64) -> f64 {
+    let n = s.grid.n;
+    let per_run: Vec<Vec<f64>> = (0..runs)
+        .map(|r| {
+            let img = render(s, seed0 + r, 1);
+            let (_, data) = img
+                .layers
+                .iter()
+                .find(|(k, _)| k == layer)
+                .expect("the film has the layer");
+            data.chunks(n)
+                .map(|px| px.iter().map(|&v| v as f64).sum())
+                .collect()
+        })
+        .collect();
+    let pixels = per_run[0].len();
+    let k = runs as f64;
+    (0..pixels)
+        .map(|p| {
+            let m = per_run.iter().map(|r| r[p]).sum::<f64>() / k;
+            per_run.iter().map(|r| (r[p] - m).powi(2)).sum::<f64>() / (k - 1.0)
+        })
+        .sum::<f64>()
+        / pixels as f64
+}
+
 /// Per layer ("medium", "surface"), per bin: the image mean over `runs` one-pass renders (seeds
 /// `seed0..`) and its standard error.
 pub fn layer_means(s: &Setup, runs: u64, seed0: u64) -> LayerMeans {
