@@ -1,29 +1,40 @@
-"""An independent reference for spot- and point-lit homogeneous fog: a light tracer, sharing no
-code with brume or Mitsuba, with a quadrature of single scattering to check it (single_scatter.py).
+"""An independent reference for homogeneous fog lit by spots, points or a parallel light: a light
+tracer, sharing no code with brume or Mitsuba, with a quadrature of single scattering to check it
+(single_scatter.py for spots; tests/python/test_light_trace.py for the parallel light).
 
-    python tools/compare/light_trace.py SCENE --photons 3e8 --renders 2 --seed 1 --out DIR [--orders]
+    python tools/compare/light_trace.py SCENE --photons 3e8 --renders 2 --seed 1 --out DIR [--orders] [--set K=V]
 
 Photons leave each light with its profile (brume's: a cone whose intensity falls linearly in
-cos(theta) over the soft edge), fly through the fog box (free-flight distances), scatter
-(Henyey-Greenstein) and bounce off Lambertian quads; every collision and every surface hit is
-connected to the pinhole camera and added to the pixel that sees it (box filter, as brume's
-pixels are the mean radiance over their rectangle on the image plane). Each film bin is traced
-with its own coefficients (a grey problem), and the bins are summed as brume's film sums them:
+cos(theta) over the soft edge; a directional light's photons leave a square upstream of every
+shape, uniformly, carrying the irradiance times its area), fly through the fog box (free-flight
+distances), scatter (Henyey-Greenstein) and bounce off Lambertian quads; every collision and
+every surface hit is connected to the camera (a pinhole, or an orthographic camera that sees each
+point along its axis) and added to the pixel that sees it (box filter, as brume's pixels are the
+mean radiance over their rectangle on the image plane). Each film bin is traced with its own
+coefficients (a grey problem; bins that share them are traced once unless a quad is textured),
+and the bins are summed as brume's film sums them:
 X, Y, Z = sum over bins of L_b * (integral of the CIE 1931 function over the bin) / (integral
 of y-bar over its table), with each light's power split over the bins by its spectrum's bin
 averages. So the images are in brume's radiometric units (scale 1), as linear Rec.709 (brume's
 default colour space; other `film.colour_space` values are refused).
+
+A quad's `texture` (a PNG, sRGB-encoded, multiplying `albedo`) is upsampled here from the
+definition of Jakob & Hanika 2019 (trace_spectra.py's `jakob_hanika`: a sigmoid of a quadratic,
+fitted to each distinct texel colour under D65), averaged over each film bin, and looked up
+bilinearly as brume's documentation says; brume and Mitsuba fit the same family with their own
+code.
 
 Writes reference-K.exr (K independent renders of seeds SEED + K: two of them are a reference's
 halves for `protocol.py --reference files`; `column_ratio.py` reads them too),
 and with --orders reference-K-orders.npz: the Y image of single scattering (order 1), of double
 scattering in the fog (order 2) and of everything else (3: more scatterings, or any surface).
 
-The scene may hold: a perspective camera; one axis-aligned `box` (translate only) whose
-`interior` medium is homogeneous (sigma_s, sigma_a as numbers, `power_law` or `constant`
-spectra, or CSV `file` spectra; g); `quad`s with `lambert` materials (constant albedo); `spot`
-and `point` lights with radiometric `power` and a named spectrum (a [spectra] entry or a
-built-in illuminant such as "D65"). Anything else is refused, naming the key.
+The scene may hold: a perspective or orthographic camera; one axis-aligned `box` (translate
+only) whose `interior` medium is homogeneous (sigma_s, sigma_a as numbers, `power_law` or
+`constant` spectra, or CSV `file` spectra; g); `quad`s with `lambert` materials (a constant
+albedo, optionally times a PNG texture); `spot` and `point` lights with radiometric `power`,
+`directional` lights with radiometric `irradiance`, each with a named spectrum (a [spectra]
+entry or a built-in illuminant such as "D65"). Anything else is refused, naming the key.
 """
 from __future__ import annotations
 
@@ -36,87 +47,15 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[2]
-SPECTRA = ROOT / "spectra"
-
-
-class Refused(ValueError):
-    """A scene this tracer cannot reproduce exactly."""
-
-
-# ------------------------------------------------------------------------------ spectra
-
-def read_table(path: Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    lines = [ln for ln in path.read_text().splitlines() if ln.strip() and not ln.startswith("#")]
-    head = [h.strip() for h in lines[0].split(",")]
-    rows = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
-    return rows[:, 0], {h: rows[:, i] for i, h in enumerate(head) if i > 0}
-
-
-def bin_average(x: np.ndarray, y: np.ndarray, a: float, b: float) -> float:
-    """Exact average over [a, b] of the piecewise-linear table (constant beyond its ends)."""
-    pts = np.unique(np.concatenate([[a, b], x[(x > a) & (x < b)]]))
-    return float(np.trapezoid(np.interp(pts, x, y), pts) / (b - a))
-
-
-def bin_edges(film: dict) -> np.ndarray:
-    if "lines" in film:
-        raise Refused("film.lines: line bins are not supported")
-    return np.linspace(film.get("lambda_min", 380.0), film.get("lambda_max", 780.0), film.get("bins", 32) + 1)
-
-
-def spectrum(value, desc: dict, scene_dir: Path, edges: np.ndarray, key: str) -> np.ndarray:
-    """Bin averages of a spectrum given as a number, a [spectra] name or a built-in illuminant."""
-    n = len(edges) - 1
-    if isinstance(value, (int, float)):
-        return np.full(n, float(value))
-    if not isinstance(value, str):
-        raise Refused(f"{key}: a number or a spectrum name")
-    entry = desc.get("spectra", {}).get(value)
-    if entry is None:
-        path = SPECTRA / f"illuminant_{value}.csv"
-        if not path.exists():
-            raise Refused(f"{key}: no spectrum {value!r}")
-        x, cols = read_table(path)
-        y = next(iter(cols.values()))
-        return np.array([bin_average(x, y, a, b) for a, b in zip(edges[:-1], edges[1:])])
-    if "constant" in entry:
-        return np.full(n, float(entry["constant"]))
-    if "power_law" in entry:
-        pl = entry["power_law"]
-        k, p, lr = pl["k"], pl["p"], pl["lambda_ref"]
-        out = []
-        for a, b in zip(edges[:-1], edges[1:]):
-            integral = lr * math.log(b / a) if abs(p - 1) < 1e-12 else lr**p * (b ** (1 - p) - a ** (1 - p)) / (1 - p)
-            out.append(k * integral / (b - a))
-        return np.array(out)
-    if "file" in entry:
-        x, cols = read_table(scene_dir / entry["file"])
-        y = cols[entry["column"]] if "column" in entry else next(iter(cols.values()))
-        return np.array([bin_average(x, y, a, b) for a, b in zip(edges[:-1], edges[1:])])
-    raise Refused(f"spectra.{value}: only constant, power_law and file spectra")
-
-
-def xyz_weights(edges: np.ndarray) -> np.ndarray:
-    """(3, bins): the integral of each CIE 1931 colour-matching function over each bin, over the
-    integral of y-bar over its whole table (brume's normalisation: a constant spectral radiance
-    of 1 has Y = 1)."""
-    x, cols = read_table(SPECTRA / "cie1931_2deg.csv")
-    total = float(np.trapezoid(cols["y_bar"], x))
-    return np.array([[bin_average(x, cols[c], a, b) * (b - a) for a, b in zip(edges[:-1], edges[1:])]
-                     for c in ("x_bar", "y_bar", "z_bar")]) / total
-
-
-def xyz_to_rec709() -> np.ndarray:
-    """XYZ -> linear Rec.709 (D65 white, so no adaptation: brume's default `colour_space`),
-    from the primaries' and the white's chromaticities."""
-    prim = np.array([[0.64, 0.33], [0.30, 0.60], [0.15, 0.06]])
-    white = np.array([0.3127, 0.3290])
-    def xyz(c):
-        return np.array([c[0] / c[1], 1.0, (1 - c[0] - c[1]) / c[1]])
-    m = np.stack([xyz(c) for c in prim], axis=1)
-    scale = np.linalg.solve(m, xyz(white))
-    return np.linalg.inv(m * scale[None, :])
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from trace_spectra import (  # noqa: E402  (the tracer's spectra: its own module)
+    Refused,
+    bin_edges,
+    spectrum,
+    upsampled_texture,
+    xyz_to_rec709,
+    xyz_weights,
+)
 
 
 # ------------------------------------------------------------------------------ the scene
@@ -130,6 +69,13 @@ class Camera:
     tanv: float
     w: int
     h: int
+    # Orthographic: the viewed rectangle's size (m); None for a pinhole.
+    view: tuple[float, float] | None = None
+
+    @property
+    def pixel_area(self) -> float:
+        """Area of a pixel on an orthographic camera's plane (m^2)."""
+        return (self.view[0] / self.w) * (self.view[1] / self.h)
 
     @property
     def plane_area(self) -> float:
@@ -167,6 +113,28 @@ class Quad:
     v: np.ndarray
     half: tuple[float, float]
     albedo: float
+    # A texture multiplying `albedo`: per film bin, the reflectance of each texel (bins, H, W),
+    # row 0 at the image's top; looked up bilinearly, tiling the plane, v = 0 at the bottom row
+    # (brume's documented lookup), at uv = (x / size_x + 1/2, y / size_y + 1/2) in the quad's
+    # own axes.
+    texture: np.ndarray | None = None
+
+    def reflectance(self, b: int, x: np.ndarray) -> np.ndarray:
+        """The albedo in film bin b at the points x on the quad."""
+        if self.texture is None:
+            return np.full(len(x), self.albedo)
+        tex = self.texture[b]
+        h, w = tex.shape
+        rel = x - self.centre
+        fu = ((rel @ self.u) / (2 * self.half[0]) + 0.5) * w - 0.5
+        fv = (1 - ((rel @ self.v) / (2 * self.half[1]) + 0.5)) * h - 0.5
+        x0, y0 = np.floor(fu), np.floor(fv)
+        tx, ty = fu - x0, fv - y0
+        xa, xb = x0.astype(np.int64) % w, (x0.astype(np.int64) + 1) % w
+        ya, yb = y0.astype(np.int64) % h, (y0.astype(np.int64) + 1) % h
+        val = ((1 - tx) * (1 - ty) * tex[ya, xa] + tx * (1 - ty) * tex[ya, xb]
+               + (1 - tx) * ty * tex[yb, xa] + tx * ty * tex[yb, xb])
+        return self.albedo * val
 
     def hit(self, o: np.ndarray, d: np.ndarray) -> np.ndarray:
         """Distance to the quad along each ray (inf where missed)."""
@@ -185,6 +153,10 @@ class Light:
     c_full: float
     c_edge: float
     power: np.ndarray  # W per nm in each bin
+    # A directional light: its travel direction, and the square (centre, two half-edge vectors)
+    # upstream of the scene that its photons leave, perpendicular to it; `power` is then the
+    # irradiance times that square's area.
+    parallel: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
     @property
     def norm(self) -> float:
@@ -202,6 +174,21 @@ class Light:
         else:
             ramp = (c >= self.c_edge).astype(float)
         return ramp / self.norm
+
+
+def parallel_light(d: np.ndarray, per_nm: np.ndarray, box: Box | None, quads: list[Quad]) -> Light:
+    """A directional light whose photons leave a square perpendicular to d, upstream of every
+    shape and wide enough that each ray towards a shape starts on it."""
+    pts = [] if box is None else [np.array([x, y, z]) for x in (box.lo[0], box.hi[0])
+                                   for y in (box.lo[1], box.hi[1]) for z in (box.lo[2], box.hi[2])]
+    for q in quads:
+        pts += [q.centre + a * q.half[0] * q.u + b * q.half[1] * q.v for a in (-1, 1) for b in (-1, 1)]
+    pts = np.array(pts)
+    centre = 0.5 * (pts.min(0) + pts.max(0))
+    r = float(np.linalg.norm(pts - centre, axis=1).max()) * 1.01
+    t = _basis(np.cross(d, [1.0, 0, 0] if abs(d[0]) < 0.9 else [0, 1.0, 0]))
+    b = np.cross(d, t)
+    return Light(centre - d * (r + 1.0), d, 1.0, 1.0, per_nm * (2 * r) ** 2, (centre - d * (r + 1.0), d, r * t, r * b))
 
 
 def rotation(deg) -> np.ndarray:
@@ -235,26 +222,35 @@ def _need(table: dict, key: str, where: str):
     return table[key]
 
 
-def load(path: Path) -> Scene:
+def load(path: Path, sets: list[str] = ()) -> Scene:
+    """The scene, with `sets` (KEY=VALUE, TOML values) applied as the protocol's --set does."""
     try:
         desc = tomllib.loads(Path(path).read_text())
     except OSError as e:
         raise Refused(f"cannot read it: {e.strerror}") from e
     except tomllib.TOMLDecodeError as e:
         raise Refused(f"not valid TOML: {e}") from e
+    if sets:
+        from protocol_scene import apply_set, parse_value
+
+        for s in sets:
+            key, _, val = s.partition("=")
+            apply_set(desc, key, parse_value(val))
     film = desc.get("film", {})
     if (film.get("colour_space", "srgb"), film.get("units", "radiometric"), str(film.get("observer", "1931"))) != (
             "srgb", "radiometric", "1931"):
         raise Refused("film: only the default colour_space (srgb), units (radiometric) and observer (1931)")
     edges = bin_edges(film)
     cam = desc.get("camera", {})
-    if cam.get("type", "perspective") != "perspective":
-        raise Refused("camera.type: only perspective")
+    kind = cam.get("type", "perspective")
+    if kind not in ("perspective", "orthographic"):
+        raise Refused("camera.type: only perspective and orthographic")
     pos = np.array(cam.get("position", [0.0, 0.0, 5.0]), float)
     fwd = _basis(np.array(cam.get("look_at", [0.0, 0.0, 0.0]), float) - pos)
     right = _basis(np.cross(fwd, cam.get("up", [0.0, 1.0, 0.0])))
+    view = (float(cam.get("view_width", 1.0)), float(cam.get("view_height", 1.0))) if kind == "orthographic" else None
     camera = Camera(pos, fwd, right, np.cross(right, fwd), math.tan(math.radians(cam.get("fov", 40.0)) / 2),
-                    int(cam.get("width", 256)), int(cam.get("height", 256)))
+                    int(cam.get("width", 256)), int(cam.get("height", 256)), view)
     boxes, quads = [], []
     for i, s in enumerate(desc.get("shapes", [])):
         t = s.get("transform", {}) or {}
@@ -273,23 +269,35 @@ def load(path: Path) -> Scene:
             boxes.append(Box(c - half, c + half, sig[0], sig[1], float(m.get("g", 0.0))))
         elif kind == "quad":
             mat = _need(desc.get("materials", {}), _need(s, "material", f"shapes[{i}]"), "materials")
-            if mat.get("type") != "lambert" or not isinstance(mat.get("albedo"), (int, float)):
+            if mat.get("type") != "lambert" or not isinstance(mat.get("albedo", 1.0), (int, float)):
                 raise Refused(f"materials.{s['material']}: only lambert with a constant albedo")
+            if "albedo" not in mat and "texture" not in mat:
+                raise Refused(f"materials.{s['material']}: `albedo` is missing")
+            texture = None
+            if "texture" in mat:
+                if not isinstance(mat["texture"], str) or not mat["texture"].lower().endswith(".png"):
+                    raise Refused(f"materials.{s['material']}.texture: only a PNG file name (sRGB, tiled)")
+                texture = upsampled_texture(Path(path).parent / mat["texture"], edges)
             R = rotation(t.get("rotate", [0, 0, 0]))
             sx, sy = s.get("size", [1, 1])
             quads.append(Quad(np.array(t.get("translate", [0, 0, 0]), float), R[:, 2], R[:, 0], R[:, 1],
-                              (sx / 2, sy / 2), float(mat["albedo"])))
+                              (sx / 2, sy / 2), float(mat.get("albedo", 1.0)), texture))
         else:
             raise Refused(f"shapes[{i}].type: {kind!r} (only box and quad)")
     if len(boxes) != 1:
         raise Refused("shapes: exactly one fog box")
     lights = []
     for i, li in enumerate(desc.get("lights", [])):
-        if _need(li, "type", f"lights[{i}]") not in ("spot", "point") or "power" not in li or "profile" in li:
-            raise Refused(f"lights[{i}]: only spot and point lights given a `power`, without a profile")
+        kind = _need(li, "type", f"lights[{i}]")
+        given = "irradiance" if kind == "directional" else "power"
+        if kind not in ("spot", "point", "directional") or given not in li or "profile" in li:
+            raise Refused(f"lights[{i}]: only spot and point lights given a `power` and directional lights "
+                          "given an `irradiance`, without a profile")
         sp = spectrum(li.get("spectrum", "D65"), desc, Path(path).parent, edges, f"lights[{i}].spectrum")
-        per_nm = li["power"] * sp / float(np.sum(sp * np.diff(edges)))
-        if li["type"] == "spot":
+        per_nm = li[given] * sp / float(np.sum(sp * np.diff(edges)))
+        if kind == "directional":
+            lights.append(parallel_light(_basis(_need(li, "direction", f"lights[{i}]")), per_nm, boxes[0] if boxes else None, quads))
+        elif kind == "spot":
             edge = min(max(_need(li, "angle", f"lights[{i}]"), 0.01), 180.0)
             full = min(max(edge - max(li.get("soft_edge", 0.0), 0.0), 0.0), edge)
             lights.append(Light(np.array(_need(li, "position", f"lights[{i}]"), float), _basis(_need(li, "direction", f"lights[{i}]")),
@@ -329,8 +337,17 @@ def _around(axis: np.ndarray, c: np.ndarray, phi: np.ndarray) -> np.ndarray:
     return c[:, None] * axis + (s * np.cos(phi))[:, None] * t + (s * np.sin(phi))[:, None] * b
 
 
-def emit(rng, light: Light, n: int) -> np.ndarray:
-    """n directions with density light.profile (rejection from the cone's cosine range)."""
+def emit(rng, light: Light, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n photons' origins and directions: from a point with density light.profile (rejection
+    from the cone's cosine range), or uniformly over a directional light's square."""
+    if light.parallel is not None:
+        c, d, t, b = light.parallel
+        u, v = rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)
+        return c + np.outer(u, t) + np.outer(v, b), np.tile(d, (n, 1))
+    return np.tile(light.pos, (n, 1)), emit_directions(rng, light, n)
+
+
+def emit_directions(rng, light: Light, n: int) -> np.ndarray:
     if light.axis is None:
         return _around(np.tile([0.0, 0, 1], (n, 1)), rng.uniform(-1, 1, n), 2 * math.pi * rng.random(n))
     out = []
@@ -352,6 +369,8 @@ class Film:
     def visible(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(pixel index, ok, unit direction to the camera, importance x transmittance)."""
         cam, box = self.s.camera, self.s.box
+        if cam.view is not None:
+            return self.visible_orthographic(x)
         v = cam.pos - x
         dist = np.linalg.norm(v, axis=1)
         to_cam = v / dist[:, None]
@@ -371,6 +390,25 @@ class Film:
         idx = np.where(ok, py * cam.w + px, 0).astype(np.int64)
         return idx, ok, to_cam, weight
 
+    def visible_orthographic(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """As `visible`, for an orthographic camera: a point is seen along -fwd by the pixel its
+        projection falls in; a unit of power there (per unit area of the film's plane, times the
+        area that the pixel's rays sweep through the point's volume) is 1 / the pixel's area."""
+        cam, box = self.s.camera, self.s.box
+        rel = x - cam.pos
+        z = rel @ cam.fwd
+        px = np.floor(((rel @ cam.right) / (0.5 * cam.view[0]) + 1) * 0.5 * cam.w)
+        py = np.floor((1 - (rel @ cam.up) / (0.5 * cam.view[1])) * 0.5 * cam.h)
+        ok = (z > 0) & (px >= 0) & (px < cam.w) & (py >= 0) & (py < cam.h)
+        to_cam = np.tile(-cam.fwd, (len(x), 1))
+        for q in self.s.quads:
+            ok &= q.hit(x, to_cam) >= z * (1 - 1e-6)
+        tn, tf = box.interval(x, to_cam)
+        inside = np.clip(np.minimum(tf, z) - tn, 0.0, None)
+        weight = np.exp(-self.sigma_t * inside) / cam.pixel_area
+        idx = np.where(ok, py * cam.w + px, 0).astype(np.int64)
+        return idx, ok, to_cam, weight
+
     def add(self, cls: np.ndarray, idx: np.ndarray, ok: np.ndarray, val: np.ndarray) -> None:
         for k in range(len(self.img)):
             m = ok & (cls == k)
@@ -387,8 +425,7 @@ def trace(scene: Scene, light: Light, b: int, n: int, rng, batch: int = 1_000_00
     while done < n:
         m = min(batch, n - done)
         done += m
-        d = emit(rng, light, m)
-        o = np.tile(light.pos, (m, 1))
+        o, d = emit(rng, light, m)
         w = np.full(m, 1.0 / n)
         cls = np.zeros(m, dtype=np.int64)  # the class of the photon's next volume collision
         for depth in range(scene.max_depth):
@@ -419,10 +456,11 @@ def trace(scene: Scene, light: Light, b: int, n: int, rng, batch: int = 1_000_00
                 idx, ok, to_cam, tw = film.visible(x)
                 cos_x = np.sum(side * to_cam, axis=1)
                 ok &= cos_x > 0
-                film.add(np.full(len(x), 2), idx, ok, wq * q.albedo / math.pi * np.maximum(cos_x, 0) * tw)
+                alb = q.reflectance(b, x)
+                film.add(np.full(len(x), 2), idx, ok, wq * alb / math.pi * np.maximum(cos_x, 0) * tw)
                 u = rng.random(len(x))
                 nd = _around(side, np.sqrt(1 - u), 2 * math.pi * rng.random(len(x)))
-                nxt_o.append(x), nxt_d.append(nd), nxt_w.append(wq * q.albedo), nxt_c.append(np.full(len(x), 2))
+                nxt_o.append(x), nxt_d.append(nd), nxt_w.append(wq * alb), nxt_c.append(np.full(len(x), 2))
             if not nxt_o:
                 break
             o, d, w, cls = (np.concatenate(a) for a in (nxt_o, nxt_d, nxt_w, nxt_c))
@@ -437,7 +475,20 @@ def render(scene: Scene, photons: float, seed: int) -> np.ndarray:
     """XYZ images of the three classes, (3, 3, H, W), of all lights and bins; photons spread in
     proportion to each (light, bin)'s weight in X + Y + Z, at least 1 % of an equal share each."""
     cw = xyz_weights(scene.edges)
-    jobs = [(li, b, light.power[b] * cw[:, b]) for li, light in enumerate(scene.lights) for b in range(cw.shape[1])]
+    # Bins with the same fog coefficients are one grey problem when no quad is textured (the
+    # other quads' albedos do not vary over bins): traced once, with their weights summed.
+    textured = any(q.texture is not None for q in scene.quads)
+    jobs = []
+    for li, light in enumerate(scene.lights):
+        first: dict[tuple, int] = {}
+        for b in range(cw.shape[1]):
+            key = (float(scene.box.sigma_s[b]), float(scene.box.sigma_a[b])) + ((b,) if textured else ())
+            if key in first:
+                j = first[key]
+                jobs[j] = (li, jobs[j][1], jobs[j][2] + light.power[b] * cw[:, b])
+            else:
+                first[key] = len(jobs)
+                jobs.append((li, b, light.power[b] * cw[:, b]))
     total = sum(j[2].sum() for j in jobs)
     out = np.zeros((3, 3, scene.camera.h, scene.camera.w))
     rng = np.random.default_rng(seed)
@@ -460,12 +511,12 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", type=Path, required=True)
     ap.add_argument("--orders", action="store_true", help="also write each render's classes (npz)")
+    ap.add_argument("--set", action="append", default=[], help="KEY=VALUE edit of the scene, as protocol.py's --set (repeatable)")
     a = ap.parse_args()
-    sys.path.insert(0, str(Path(__file__).parent))
     from compare import write_rgb
 
     try:
-        scene = load(a.scene)
+        scene = load(a.scene, a.set)
     except Refused as e:
         raise SystemExit(f"{a.scene}: {e}")
     a.out.mkdir(parents=True, exist_ok=True)

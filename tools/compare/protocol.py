@@ -17,7 +17,8 @@ favoured brume in several ways at once):
   brume's own long run where Mitsuba cannot converge (fog-room-laser's 2 mm laser, compare.py's
   docstring: --reference brume, with the scene's own settings), or two halves rendered
   elsewhere (--reference files --reference-halves A B: light_trace.py's independent light
-  tracer for spot-lit fog, where Mitsuba reads high near the spot). Each is rendered as two
+  tracer, where Mitsuba reads high near chromatic-fog's spot and its `stratified` sampler
+  reads a gradient on fog-cube). Each is rendered as two
   independent halves A, B (other seeds); the reference is their mean, and its own noise,
   E[(A - B)^2] / 4 per pixel, is subtracted from every MSE (recomputed on 4x4-binned images for
   the binned metric). Mitsuba's light spectra are in brume's units (mitsuba_scene.py), so the
@@ -42,9 +43,12 @@ favoured brume in several ways at once):
   time was single-threaded), and a pilot picks its sampler among independent, stratified,
   multijitter and ldsampler (stratified sampling was worth 1.33-1.36x in variance per sample on
   fog-cube). The pilot renders two images per sampler at --pilot-seconds on seeds no measured
-  run uses; each sampler's per-pixel RMSE is sqrt(mean((A - B)^2) / 2) (all four are unbiased,
-  so their RMSE is their noise), scaled to the pilot budget; the lowest wins and is named in
-  every output. The integrator is volpathmis when a medium's coefficients vary with wavelength
+  run uses; each sampler's per-pixel RMSE is sqrt(mean((A - B)^2) / 2), scaled to the pilot
+  budget; the lowest wins and is named in every output. That scores noise alone, assuming every
+  sampler unbiased, and on fog-cube `stratified` is not: against the independent light
+  tracer it reads a gradient of +-0.5 % along the light (Mitsuba's `independent` and brume do
+  not; docs/performance.md). A 4 s pilot cannot see a bias that small, so protocol.sh also
+  measures `independent` in full (--sampler independent) wherever the reference is the tracer's. The integrator is volpathmis when a medium's coefficients vary with wavelength
   (spectral MIS), else volpath; spots get brume's exact soft edge; the glossy floor is brume's
   BSDF as a Python plugin, traced into Mitsuba's LLVM kernels (native speed, timed as is).
 - brume with its DEFAULT settings: settings tuned on the very scene, reference and metric that

@@ -5,7 +5,8 @@
 # Run from the repository root on an otherwise IDLE machine (nothing else running: the harness
 # warns on every run that starts above a 1-minute load average of 0.5, and waits up to 90 s
 # before each run for the load its own previous run left to decay).
-# Time: about 40 min per fog-cube (10 and 60 s), 15-25 min for each other scene; ~2.5 h in all.
+# Time: about 40 min per fog-cube (10 and 60 s), 15-25 min for each other scene, 10-20 min for
+# each light tracer's reference; ~4 h in all.
 # Environment: MITSUBA_PY (the Mitsuba venv's python), BRUME (release binary), OUT (outputs),
 # REF (reference seconds, two halves), TUNED=1 also measures the scenes' own (tuned) settings
 # against the same references and pilots (reported apart: they were tuned on these scenes).
@@ -28,19 +29,43 @@ measure() {
     fi
 }
 
-measure fog-cube scenes/fog-cube.toml --times 10 60
-measure fog-cube-albedo-0.9 scenes/fog-cube.toml --set media.fog.sigma_s=0.9 --set media.fog.sigma_a=0.1 --times 10 60
-measure chromatic-cube tools/compare/scenes/chromatic-cube.toml --times 10
-# The spot 5 cm from the fog: Mitsuba reads high there (0.7 % of the image, 4 % near the spot;
-# docs/performance.md, "Where chromatic-fog's 1 % goes"), so the reference is the independent
-# light tracer's: two halves of 3e8 photons, side by side (both done within 18 min on 2 cores with other work running).
-if [[ "$MITSUBA_PY" != echo ]]; then
-    "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" scenes/chromatic-fog.toml --photons 3e8 --renders 1 --seed 1000 --out "$OUT/cf-lt1" &
-    "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" scenes/chromatic-fog.toml --photons 3e8 --renders 1 --seed 2000 --out "$OUT/cf-lt2"
+# The independent light tracer's reference (light_trace.py): two halves of PHOTONS photons,
+# side by side, for the scene and its --set edits: name, photons, scene, edits.
+trace() {
+    local name=$1 photons=$2 scene=$3; shift 3
+    [[ "$MITSUBA_PY" == echo ]] && { echo "trace $name"; return; }
+    "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" "$scene" "$@" --photons "$photons" --renders 1 --seed 1000 --out "$OUT/$name-lt1" &
+    "$MITSUBA_PY" "$(dirname "$0")/light_trace.py" "$scene" "$@" --photons "$photons" --renders 1 --seed 2000 --out "$OUT/$name-lt2"
     wait
-fi
+}
+# A scene against its tracer reference: name, scene, options. Mitsuba with its pilot's sampler,
+# then with `independent`: the pilot scores samplers by their noise alone, and on fog-cube
+# `stratified` is biased (a 0.5 % gradient along the light; docs/performance.md, "Mitsuba's
+# stratified sampler on fog-cube"), which only a full-length run against an independent
+# reference shows. The better of the two per metric is the peer's figure.
+against_trace() {
+    local name=$1; shift
+    local halves=(--reference files --reference-halves "$OUT/$name-lt1/reference-0.exr" "$OUT/$name-lt2/reference-0.exr")
+    "${P[@]}" "$@" "${halves[@]}" --work "$OUT/$name-work" --out "$OUT/$name"
+    "${P[@]}" "$@" "${halves[@]}" --sampler independent --work "$OUT/$name-work" --out "$OUT/$name-independent"
+}
+
+# The parallel-light cubes: Mitsuba's `stratified` sampler reads a gradient on fog-cube that the
+# tracer, brume and Mitsuba's `independent` do not, so the tracer is the reference (4e8 photons
+# a half: about 9 min side by side on 2 cores).
+trace fog-cube 4e8 scenes/fog-cube.toml
+against_trace fog-cube scenes/fog-cube.toml --times 10 60
+A09=(--set media.fog.sigma_s=0.9 --set media.fog.sigma_a=0.1)
+trace fog-cube-albedo-0.9 4e8 scenes/fog-cube.toml "${A09[@]}"
+against_trace fog-cube-albedo-0.9 scenes/fog-cube.toml "${A09[@]}" --times 10 60
+trace chromatic-cube 4e8 tools/compare/scenes/chromatic-cube.toml
+against_trace chromatic-cube tools/compare/scenes/chromatic-cube.toml --times 10 60
+# The spot 5 cm from the fog: Mitsuba reads high there (0.7 % of the image, 4 % near the spot;
+# docs/performance.md, "Where chromatic-fog's 1 % goes"), so the reference is the tracer's:
+# two halves of 3e8 photons (both done within 18 min on 2 cores with other work running).
+trace chromatic-fog 3e8 scenes/chromatic-fog.toml
 "${P[@]}" scenes/chromatic-fog.toml --times 10 60 --reference files \
-    --reference-halves "$OUT/cf-lt1/reference-0.exr" "$OUT/cf-lt2/reference-0.exr" \
+    --reference-halves "$OUT/chromatic-fog-lt1/reference-0.exr" "$OUT/chromatic-fog-lt2/reference-0.exr" \
     --work "$OUT/chromatic-fog-work" --out "$OUT/chromatic-fog"
 # The laser: brume's reference (Mitsuba cannot converge a 2 mm beam; compare.py's docstring).
 # Its exact 532 nm line is not mapped to Mitsuba: both render the 14 nm triangle the goldens pin.
