@@ -1,15 +1,28 @@
-//! Spheres and discs intersected exactly in their local frame (any affine transform).
+//! Spheres, discs and boxes intersected exactly in their local frame (any affine transform).
 
 use std::f32::consts::{PI, TAU};
 
 use glam::{Vec2, Vec3, vec2};
 
 use super::Transform;
+use super::sampling::{concentric_disc, uniform_sphere};
+
+mod cuboid;
 
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum AnalyticKind {
-    Sphere { radius: f32 },
-    Disc { radius: f32 },
+    Sphere {
+        radius: f32,
+    },
+    Disc {
+        radius: f32,
+    },
+    /// Centred, `half` the size along each local axis; `areas` are its faces' world areas
+    /// (`cuboid::face_areas`), for uniform area sampling.
+    Box {
+        half: Vec3,
+        areas: [f32; 6],
+    },
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -27,6 +40,17 @@ pub(crate) struct SurfacePoint {
 }
 
 impl Analytic {
+    /// A box of `size` (local frame) under `transform`, for shape `shape`.
+    pub fn cuboid(size: Vec3, transform: Transform, shape: u32) -> Self {
+        let half = size * 0.5;
+        let areas = cuboid::face_areas(half, |v| transform.vector(v));
+        Self {
+            kind: AnalyticKind::Box { half, areas },
+            transform,
+            shape,
+        }
+    }
+
     /// Closest hit distance in `(0, t_max)`, or infinity. The local-frame direction is not
     /// normalised, so the local ray parameter equals the world distance.
     #[inline]
@@ -44,6 +68,7 @@ impl Analytic {
                     f32::INFINITY
                 }
             }
+            AnalyticKind::Box { half, .. } => cuboid::hit(lo, ld, half, t_max),
         };
         if t > 0.0 && t < t_max {
             t
@@ -73,6 +98,66 @@ impl Analytic {
                     uv: vec2(r / radius, phi / TAU),
                 }
             }
+            AnalyticKind::Box { half, .. } => {
+                let (lp, ln, uv) = cuboid::surface(lp, half);
+                SurfacePoint {
+                    p: self.transform.point(lp),
+                    n: self.transform.normal(ln),
+                    uv,
+                }
+            }
+        }
+    }
+
+    /// World surface area (spheres: exact under uniform scaling only).
+    pub fn area(&self) -> f32 {
+        let t = &self.transform;
+        match self.kind {
+            AnalyticKind::Sphere { radius } => {
+                // Uniform scale factor of a similarity transform.
+                let s = t.matrix().determinant().abs().cbrt();
+                4.0 * PI * radius * radius * s * s
+            }
+            AnalyticKind::Disc { radius } => {
+                let area_scale = t.vector(Vec3::X).cross(t.vector(Vec3::Y)).length();
+                PI * radius * radius * area_scale
+            }
+            AnalyticKind::Box { areas, .. } => areas.iter().sum(),
+        }
+    }
+
+    /// Are [`Self::sample`] exactly uniform and [`Self::area`] exact? False only for spheres
+    /// under non-uniform scaling (ellipsoids), which area lights must not use.
+    pub fn sampling_exact(&self) -> bool {
+        match self.kind {
+            AnalyticKind::Sphere { .. } => {
+                let m = self.transform.matrix();
+                let l = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
+                (l[0] - l[1]).abs() <= 1e-5 * l[0] && (l[0] - l[2]).abs() <= 1e-5 * l[0]
+            }
+            AnalyticKind::Disc { .. } | AnalyticKind::Box { .. } => true,
+        }
+    }
+
+    /// A world point uniform over the surface (spheres: under uniform scaling) and the outward
+    /// normal there.
+    pub fn sample(&self, u: Vec2) -> (Vec3, Vec3) {
+        match self.kind {
+            AnalyticKind::Sphere { radius } => {
+                let s = self.sphere_point(uniform_sphere(u), radius);
+                (s.p, s.n)
+            }
+            AnalyticKind::Disc { radius } => {
+                let d = concentric_disc(u) * radius;
+                (
+                    self.transform.point(Vec3::new(d.x, d.y, 0.0)),
+                    self.transform.normal(Vec3::Z),
+                )
+            }
+            AnalyticKind::Box { half, areas } => {
+                let (p, n) = cuboid::sample(half, &areas, u);
+                (self.transform.point(p), self.transform.normal(n))
+            }
         }
     }
 
@@ -87,11 +172,13 @@ impl Analytic {
         }
     }
 
-    /// World-space bounds (of the transformed local box: loose for rotated spheres, but cheap).
+    /// World-space bounds (of the transformed local box: loose for rotated spheres, but cheap;
+    /// padded but for boxes, whose corners bound them exactly, as their triangles' did).
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        let r = match self.kind {
-            AnalyticKind::Sphere { radius } => Vec3::splat(radius),
-            AnalyticKind::Disc { radius } => Vec3::new(radius, radius, 0.0),
+        let (r, padded) = match self.kind {
+            AnalyticKind::Sphere { radius } => (Vec3::splat(radius), true),
+            AnalyticKind::Disc { radius } => (Vec3::new(radius, radius, 0.0), true),
+            AnalyticKind::Box { half, .. } => (half, false),
         };
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
@@ -104,6 +191,9 @@ impl Analytic {
             let p = self.transform.point(c);
             lo = lo.min(p);
             hi = hi.max(p);
+        }
+        if !padded {
+            return (lo, hi);
         }
         // Pad: a flat disc would otherwise have a zero-thickness box.
         let pad = 1e-5 * (1.0 + lo.abs().max(hi.abs()).max_element());

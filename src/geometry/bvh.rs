@@ -1,24 +1,21 @@
-//! The scene geometry: every shape's triangles and analytic primitives in one obvhs CWBVH.
+//! The scene geometry: every shape's triangles and analytic primitives in one obvhs CWBVH
+//! (built in `parts`), intersected through it or, in scenes of a few primitives, one by one.
 
 mod interior;
-
-use std::time::Duration;
+mod parts;
 
 use glam::{Vec2, Vec3, Vec3A};
 use obvhs::{
-    BvhBuildParams,
-    aabb::Aabb as BvhAabb,
-    cwbvh::{CwBvh, builder::build_cwbvh},
+    cwbvh::CwBvh,
     ray::{Ray as BvhRay, RayHit},
 };
 
-use super::analytic::{Analytic, AnalyticKind};
-use super::limits::{collapsed_at, out_of_range};
+use super::analytic::Analytic;
 use super::ray::null_rank;
-use super::sampling::{concentric_disc, uniform_sphere, uniform_triangle};
-use super::tessellate::{WorldTri, tessellate};
+use super::sampling::uniform_triangle;
 use super::triangle::{ShearedRay, TriGeom};
-use super::{Aabb, GeometryError, Ray, ShapeDesc, ShapeKind};
+use super::{Aabb, GeometryError, Ray, ShapeDesc};
+use parts::{Parts, build_bvh};
 
 /// A surface hit. `ng` is the geometric normal pointing out of the shape (the exterior side),
 /// `ns` the shading normal on the same side as `ng`.
@@ -66,137 +63,6 @@ pub struct Geometry {
     bounds: Aabb,
     areas: Vec<f32>,
     samplers: Vec<AreaSampler>,
-}
-
-/// The primitives of the shapes added so far: world triangles, analytic shapes, and each
-/// shape's area and area sampler.
-#[derive(Default)]
-struct Parts {
-    world: Vec<WorldTri>,
-    tri_shape: Vec<u32>,
-    analytic: Vec<Analytic>,
-    areas: Vec<f32>,
-    samplers: Vec<AreaSampler>,
-}
-
-impl Parts {
-    /// Adds shape `i`, checking its parameters.
-    fn add(&mut self, i: usize, desc: &ShapeDesc) -> Result<(), GeometryError> {
-        let bad = |message: &str| GeometryError::InvalidShape {
-            shape: i,
-            message: message.into(),
-        };
-        if !desc.transform.is_valid() {
-            return Err(bad("transform is singular or not finite"));
-        }
-        let positive = |v: &[f32]| v.iter().all(|x| *x > 0.0 && x.is_finite());
-        let analytic = match desc.kind {
-            ShapeKind::Sphere { radius } => Some(AnalyticKind::Sphere { radius }),
-            ShapeKind::Disc { radius } => Some(AnalyticKind::Disc { radius }),
-            ShapeKind::Quad { size } if !positive(&size.to_array()) => {
-                return Err(bad("size must be positive and finite"));
-            }
-            ShapeKind::Box { size } if !positive(&size.to_array()) => {
-                return Err(bad("size must be positive and finite"));
-            }
-            ShapeKind::Quad { .. } | ShapeKind::Box { .. } | ShapeKind::Mesh { .. } => None,
-        };
-        match analytic {
-            Some(kind) => self.add_analytic(i, desc, kind).map_err(|m| bad(&m)),
-            None => self.add_triangles(i, desc),
-        }
-    }
-
-    fn add_analytic(
-        &mut self,
-        i: usize,
-        desc: &ShapeDesc,
-        kind: AnalyticKind,
-    ) -> Result<(), String> {
-        let radius = match kind {
-            AnalyticKind::Sphere { radius } | AnalyticKind::Disc { radius } => radius,
-        };
-        if !(radius > 0.0 && radius.is_finite()) {
-            return Err("radius must be positive".into());
-        }
-        let a = Analytic {
-            kind,
-            transform: desc.transform,
-            shape: i as u32,
-        };
-        let (lo, hi) = a.bounds();
-        if let Some(why) = out_of_range(lo).or_else(|| out_of_range(hi)) {
-            return Err(why);
-        }
-        self.areas.push(analytic_area(&a));
-        self.samplers
-            .push(AreaSampler::Analytic(self.analytic.len() as u32));
-        self.analytic.push(a);
-        Ok(())
-    }
-
-    fn add_triangles(&mut self, i: usize, desc: &ShapeDesc) -> Result<(), GeometryError> {
-        let first = self.world.len();
-        tessellate(i, desc, &mut self.world)?;
-        let bad = |message: String| GeometryError::InvalidShape { shape: i, message };
-        let mut total = 0.0f32;
-        let mut cdf = Vec::with_capacity(self.world.len() - first);
-        for t in &self.world[first..] {
-            if let Some(why) = t.v.iter().find_map(|&v| out_of_range(v)) {
-                return Err(bad(why));
-            }
-            total += 0.5 * (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).length();
-            cdf.push(total);
-        }
-        // Vertices that round to the same f32 values (a small shape far from the origin) leave
-        // triangles no ray can hit: the shape would be silently missing from the image.
-        if !cdf.is_empty() && total <= 0.0 {
-            return Err(bad(collapsed_at(self.world[first].v[0])));
-        }
-        self.tri_shape.resize(self.world.len(), i as u32);
-        self.areas.push(total);
-        self.samplers.push(if cdf.is_empty() {
-            AreaSampler::Empty
-        } else {
-            AreaSampler::Triangles {
-                first: first as u32,
-                cdf,
-            }
-        });
-        Ok(())
-    }
-}
-
-/// The wide BVH over the triangles then the analytic shapes (their primitive ids in that
-/// order), and the bounds of everything.
-fn build_bvh(world: &[WorldTri], analytic: &[Analytic]) -> (Option<CwBvh>, Aabb) {
-    let mut boxes: Vec<BvhAabb> = world
-        .iter()
-        .map(|t| {
-            let lo = t.v[0].min(t.v[1]).min(t.v[2]);
-            let hi = t.v[0].max(t.v[1]).max(t.v[2]);
-            let pad = bvh_pad(lo, hi);
-            BvhAabb::new((lo - pad).into(), (hi + pad).into())
-        })
-        .collect();
-    boxes.extend(analytic.iter().map(|a| {
-        let (lo, hi) = a.bounds();
-        let pad = bvh_pad(lo, hi);
-        BvhAabb::new((lo - pad).into(), (hi + pad).into())
-    }));
-    let mut bounds = Aabb::EMPTY;
-    for b in &boxes {
-        bounds.grow(b.min.into());
-        bounds.grow(b.max.into());
-    }
-    let bvh = (!boxes.is_empty()).then(|| {
-        build_cwbvh(
-            &boxes,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        )
-    });
-    (bvh, bounds)
 }
 
 impl Geometry {
@@ -266,7 +132,7 @@ impl Geometry {
         &self.shapes
     }
 
-    /// Number of BVH primitives (triangles plus analytic spheres and discs).
+    /// Number of BVH primitives (triangles plus analytic spheres, discs and boxes).
     pub fn num_primitives(&self) -> usize {
         self.tris.len() + self.analytic.len()
     }
@@ -301,29 +167,66 @@ impl Geometry {
         let bvh = self.bvh.as_ref()?;
         let o = Vec3A::from(ray.o);
         let sr = ShearedRay::new(o, ray.d.into());
-        let mut hit = RayHit::none();
-        let found = bvh.ray_traverse(
-            BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
-            &mut hit,
-            |r, id| {
-                let t = self.slot_t(bvh, id, ray, &sr, r.tmax);
-                if t < r.tmax && self.slot_null[id] {
-                    null_rank(ray, t, t_max)
-                } else {
-                    t
-                }
-            },
-        );
-        if !found {
-            return None;
-        }
-        let prim = bvh.primitive_indices[hit.primitive_id as usize];
-        let t = if self.slot_null[hit.primitive_id as usize] {
+        let (slot, rank) = if self.slot_null.len() <= SMALL_SCENE {
+            self.closest_slot(bvh, ray, &sr, t_max)?
+        } else {
+            let mut hit = RayHit::none();
+            let found = bvh.ray_traverse(
+                BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max),
+                &mut hit,
+                |r, id| self.slot_rank(bvh, id, ray, &sr, (r.tmax, t_max)),
+            );
+            if !found {
+                return None;
+            }
+            (hit.primitive_id as usize, hit.t)
+        };
+        let prim = bvh.primitive_indices[slot];
+        // A null boundary's rank is not its distance: find the distance again.
+        let t = if self.slot_null[slot] {
             self.prim_t(prim as usize, ray, &sr, t_max)
         } else {
-            hit.t
+            rank
         };
         Some(self.hit_details(ray, prim, t))
+    }
+
+    /// The rank of slot `slot`'s primitive along the ray (its distance, a null boundary's
+    /// [`null_rank`]) when nearer than `best`; `t_max` is the query's.
+    #[inline(always)]
+    fn slot_rank(
+        &self,
+        bvh: &CwBvh,
+        slot: usize,
+        ray: &Ray,
+        sr: &ShearedRay,
+        (best, t_max): (f32, f32),
+    ) -> f32 {
+        let t = self.slot_t(bvh, slot, ray, sr, best);
+        if t < best && self.slot_null[slot] {
+            null_rank(ray, t, t_max)
+        } else {
+            t
+        }
+    }
+
+    /// The slot of the closest hit and its rank, every primitive tested in turn: for scenes of
+    /// a few primitives (a fog box and its walls) the BVH's traversal costs more than the tests.
+    fn closest_slot(
+        &self,
+        bvh: &CwBvh,
+        ray: &Ray,
+        sr: &ShearedRay,
+        t_max: f32,
+    ) -> Option<(usize, f32)> {
+        let mut best = (t_max, None);
+        for slot in 0..self.slot_null.len() {
+            let rank = self.slot_rank(bvh, slot, ray, sr, (best.0, t_max));
+            if rank < best.0 {
+                best = (rank, Some(slot));
+            }
+        }
+        best.1.map(|slot| (slot, best.0))
     }
 
     /// Does primitive `prim` belong to a null boundary (a shape without a material)?
@@ -342,6 +245,9 @@ impl Geometry {
         };
         let o = Vec3A::from(ray.o);
         let sr = ShearedRay::new(o, ray.d.into());
+        if self.slot_null.len() <= SMALL_SCENE {
+            return (0..self.slot_null.len()).any(|s| self.slot_t(bvh, s, ray, &sr, t_max) < t_max);
+        }
         !bvh.ray_traverse_miss(BvhRay::new(o, bvh_dir(ray.d), 0.0, t_max), |r, id| {
             self.slot_t(bvh, id, ray, &sr, r.tmax)
         })
@@ -412,17 +318,7 @@ impl Geometry {
     /// only for spheres under non-uniform scaling (ellipsoids), which area lights must not use.
     pub fn area_sampling_exact(&self, shape: u32) -> bool {
         match &self.samplers[shape as usize] {
-            AreaSampler::Analytic(i) => {
-                let a = &self.analytic[*i as usize];
-                match a.kind {
-                    AnalyticKind::Sphere { .. } => {
-                        let m = a.transform.matrix();
-                        let l = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
-                        (l[0] - l[1]).abs() <= 1e-5 * l[0] && (l[0] - l[2]).abs() <= 1e-5 * l[0]
-                    }
-                    AnalyticKind::Disc { .. } => true,
-                }
-            }
+            AreaSampler::Analytic(i) => self.analytic[*i as usize].sampling_exact(),
             AreaSampler::Triangles { .. } | AreaSampler::Empty => true,
         }
     }
@@ -447,26 +343,15 @@ impl Geometry {
                 let p = tri.v[0] + (tri.v[1] - tri.v[0]) * b.x + (tri.v[2] - tri.v[0]) * b.y;
                 (p.into(), Vec3::from(tri.normal()).normalize())
             }
-            AreaSampler::Analytic(i) => {
-                let a = &self.analytic[*i as usize];
-                match a.kind {
-                    AnalyticKind::Sphere { radius } => {
-                        let s = a.sphere_point(uniform_sphere(u), radius);
-                        (s.p, s.n)
-                    }
-                    AnalyticKind::Disc { radius } => {
-                        let d = concentric_disc(u) * radius;
-                        (
-                            a.transform.point(Vec3::new(d.x, d.y, 0.0)),
-                            a.transform.normal(Vec3::Z),
-                        )
-                    }
-                }
-            }
+            AreaSampler::Analytic(i) => self.analytic[*i as usize].sample(u),
             AreaSampler::Empty => (Vec3::ZERO, Vec3::Z),
         }
     }
 }
+
+/// Scenes of at most this many primitives are intersected without their BVH
+/// ([`Geometry::closest_slot`]).
+const SMALL_SCENE: usize = 8;
 
 /// obvhs node tests ignore everything closer than its traversal epsilon (1e-4) to the ray origin,
 /// and lose flat boxes to rounding. Padding each primitive box by more than that epsilon keeps
@@ -481,19 +366,4 @@ fn bvh_pad(lo: Vec3, hi: Vec3) -> f32 {
 #[inline(always)]
 fn bvh_dir(d: Vec3) -> Vec3A {
     Vec3A::from(d) + Vec3A::ZERO
-}
-
-fn analytic_area(a: &Analytic) -> f32 {
-    let t = &a.transform;
-    match a.kind {
-        AnalyticKind::Sphere { radius } => {
-            // Uniform scale factor of a similarity transform.
-            let s = t.matrix().determinant().abs().cbrt();
-            4.0 * std::f32::consts::PI * radius * radius * s * s
-        }
-        AnalyticKind::Disc { radius } => {
-            let area_scale = t.vector(Vec3::X).cross(t.vector(Vec3::Y)).length();
-            std::f32::consts::PI * radius * radius * area_scale
-        }
-    }
 }

@@ -1,4 +1,5 @@
-//! Turns quads, boxes and meshes into world-space triangles with shading attributes.
+//! Turns quads and meshes into world-space triangles with shading attributes (spheres, discs
+//! and boxes are analytic primitives).
 
 use glam::{Vec2, Vec3, vec2, vec3};
 
@@ -25,7 +26,7 @@ pub(crate) fn tessellate(
     };
     let mut local: Vec<WorldTri> = Vec::new();
     match &desc.kind {
-        ShapeKind::Sphere { .. } | ShapeKind::Disc { .. } => return Ok(()),
+        ShapeKind::Sphere { .. } | ShapeKind::Disc { .. } | ShapeKind::Box { .. } => return Ok(()),
         ShapeKind::Quad { size } => {
             let h = *size * 0.5;
             let q = [
@@ -36,7 +37,6 @@ pub(crate) fn tessellate(
             ];
             push_quad(&mut local, q);
         }
-        ShapeKind::Box { size } => box_faces(*size, &mut local),
         ShapeKind::Mesh {
             positions,
             normals,
@@ -63,25 +63,6 @@ pub(crate) fn tessellate(
         out.push(tri);
     }
     Ok(())
-}
-
-/// The six faces of a centred box of `size`, outward.
-fn box_faces(size: Vec3, out: &mut Vec<WorldTri>) {
-    let h = size * 0.5;
-    // For each face: outward axis, and two in-plane axes with u x v = outward.
-    let faces = [
-        (Vec3::X, Vec3::Y, Vec3::Z),
-        (-Vec3::X, Vec3::Z, Vec3::Y),
-        (Vec3::Y, Vec3::Z, Vec3::X),
-        (-Vec3::Y, Vec3::X, Vec3::Z),
-        (Vec3::Z, Vec3::X, Vec3::Y),
-        (-Vec3::Z, Vec3::Y, Vec3::X),
-    ];
-    for (n, u, v) in faces {
-        let c = n * h;
-        let (du, dv) = (u * h, v * h);
-        push_quad(out, [c - du - dv, c + du - dv, c + du + dv, c - du + dv]);
-    }
 }
 
 /// A mesh's triangles in its local frame, checked (attribute counts, indices), degenerate ones
