@@ -7,6 +7,9 @@ use glam::{Vec2, Vec3, vec2};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+mod common;
+use common::random_dir;
+
 /// The box of `size` as the mesh the tessellator used to make: per face (outward axis, u, v with
 /// u x v outward), uv (0, 0) at `c - u - v` and (1, 1) at `c + u + v`.
 fn box_mesh(size: Vec3) -> ShapeKind {
@@ -37,16 +40,6 @@ fn box_mesh(size: Vec3) -> ShapeKind {
         normals: None,
         uvs: Some(uvs),
         indices,
-    }
-}
-
-fn random_dir(rng: &mut Pcg64Mcg) -> Vec3 {
-    loop {
-        let v = Vec3::new(rng.random::<f32>(), rng.random(), rng.random()) * 2.0 - 1.0;
-        let l = v.length_squared();
-        if l > 1e-4 && l <= 1.0 {
-            return v / l.sqrt();
-        }
     }
 }
 

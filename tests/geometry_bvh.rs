@@ -5,6 +5,9 @@ use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+mod common;
+use common::random_dir;
+
 /// A lat-long sphere with a bumpy radius: `rings * segments * 2` triangles.
 fn bumpy_sphere(rings: u32, segments: u32) -> ShapeKind {
     let mut positions = Vec::new();
@@ -37,16 +40,6 @@ fn bumpy_sphere(rings: u32, segments: u32) -> ShapeKind {
         normals: None,
         uvs: None,
         indices,
-    }
-}
-
-fn random_dir(rng: &mut Pcg64Mcg) -> Vec3 {
-    loop {
-        let v = Vec3::new(rng.random::<f32>(), rng.random(), rng.random()) * 2.0 - 1.0;
-        let l = v.length_squared();
-        if l > 1e-4 && l <= 1.0 {
-            return v / l.sqrt();
-        }
     }
 }
 

@@ -215,3 +215,16 @@ pub fn assert_layers_agree(
     }
     worst
 }
+
+/// A direction uniform on the unit sphere, by rejection from the cube (the geometry tests'
+/// random rays).
+pub fn random_dir(rng: &mut rand_pcg::Pcg64Mcg) -> glam::Vec3 {
+    use rand::Rng;
+    loop {
+        let v = glam::Vec3::new(rng.random::<f32>(), rng.random(), rng.random()) * 2.0 - 1.0;
+        let l = v.length_squared();
+        if l > 1e-4 && l <= 1.0 {
+            return v / l.sqrt();
+        }
+    }
+}
