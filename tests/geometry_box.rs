@@ -8,7 +8,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 mod common;
-use common::random_dir;
+use common::{check_against_brute_force, random_dir};
 
 /// The box of `size` as the mesh the tessellator used to make: per face (outward axis, u, v with
 /// u x v outward), uv (0, 0) at `c - u - v` and (1, 1) at `c + u + v`.
@@ -155,30 +155,7 @@ fn small_scenes_answer_as_brute_force() {
     };
     let geo = Geometry::new(vec![fog, wall]).unwrap();
     assert_eq!(geo.num_primitives(), 3);
-    let mut rng = Pcg64Mcg::seed_from_u64(11);
-    let mut hits = 0;
-    for k in 0..50_000 {
-        let o = (Vec3::new(rng.random(), rng.random(), rng.random()) - 0.5) * 3.0;
-        let d = random_dir(&mut rng);
-        let ray = Ray::new(o, d);
-        let t_max = if k % 3 == 0 {
-            rng.random::<f32>() * 3.0
-        } else {
-            f32::INFINITY
-        };
-        let fast = geo.intersect(&ray, t_max);
-        let slow = geo.intersect_brute_force(&ray, t_max);
-        match (fast, slow) {
-            (None, None) => {}
-            (Some(f), Some(s)) => {
-                hits += 1;
-                assert_eq!((f.t, f.shape), (s.t, s.shape), "ray {k}");
-            }
-            _ => panic!("ray {k}: {fast:?} vs brute force {slow:?}"),
-        }
-        assert_eq!(geo.occluded(&ray, t_max), slow.is_some(), "ray {k}");
-    }
-    assert!(hits > 4_000, "only {hits} hits");
+    check_against_brute_force(&geo, 50_000, 11);
     // The wall is coplanar with the box's back face: from inside, the wall (a surface) is met
     // first, as null_rank orders them, so that no light leaks through it.
     let h = geo

@@ -228,3 +228,55 @@ pub fn random_dir(rng: &mut rand_pcg::Pcg64Mcg) -> glam::Vec3 {
         }
     }
 }
+
+/// Random rays from a box around the scene, half of them aimed at random scene points so that
+/// many hit; compares closest hits and any-hit answers.
+pub fn check_against_brute_force(geo: &brume::geometry::Geometry, n_rays: usize, seed: u64) {
+    use brume::geometry::Ray;
+    use glam::Vec3;
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(seed);
+    let b = geo.bounds();
+    let (c, ext) = (b.centre(), b.diagonal());
+    let mut hits = 0;
+    for k in 0..n_rays {
+        let o = c + (Vec3::new(rng.random(), rng.random(), rng.random()) - 0.5) * ext * 1.5;
+        // Every seventh ray is axis-parallel (with either sign of zero), a case obvhs mishandles raw.
+        let d = if k % 7 == 0 {
+            let a = [Vec3::X, Vec3::Y, Vec3::Z][rng.random_range(0..3)];
+            if rng.random::<bool>() { -a } else { a }
+        } else if k % 2 == 0 {
+            let target =
+                c + (Vec3::new(rng.random(), rng.random(), rng.random()) - 0.5) * ext * 0.8;
+            (target - o).normalize_or(Vec3::Z)
+        } else {
+            random_dir(&mut rng)
+        };
+        let ray = Ray::new(o, d);
+        let t_max = if k % 3 == 0 {
+            rng.random::<f32>() * ext.length()
+        } else {
+            f32::INFINITY
+        };
+        let fast = geo.intersect(&ray, t_max);
+        let slow = geo.intersect_brute_force(&ray, t_max);
+        match (fast, slow) {
+            (None, None) => {}
+            (Some(f), Some(s)) => {
+                hits += 1;
+                assert_eq!(f.t, s.t, "ray {k}: closest t differs");
+                // Equal t on two shapes where they touch: the same shape wins in both, ranked alike.
+                assert_eq!(f.shape, s.shape, "ray {k}");
+                assert!((f.p - s.p).length() < 1e-4);
+            }
+            _ => panic!("ray {k}: bvh {fast:?} vs brute force {slow:?}"),
+        }
+        assert_eq!(
+            geo.occluded(&ray, t_max),
+            slow.is_some(),
+            "ray {k}: any-hit differs"
+        );
+    }
+    // Not vacuous: a good share of rays must hit.
+    assert!(hits > n_rays / 5, "only {hits} hits");
+}
