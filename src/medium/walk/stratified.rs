@@ -91,17 +91,14 @@ impl MultiSphereWalk {
         let n = mix.n();
         let st = &medium.sigma_t;
         // A_l = 1 - e^{-st_l T}: each bin's probability of an extinction on the segment.
-        let mut a = Spectrum::ZERO;
-        for l in 0..n {
-            if st.0[l] <= 0.0 || st.0[l].is_nan() {
-                return None;
-            }
-            a.0[l] = if seg_len.is_finite() {
-                -(-st.0[l] * seg_len).exp_m1()
-            } else {
-                1.0
-            };
+        if st.0[..n].iter().any(|&s| s <= 0.0 || s.is_nan()) {
+            return None;
         }
+        let a = if seg_len.is_finite() {
+            st.map_runs(n, |s| -(-s * seg_len).exp_m1())
+        } else {
+            Spectrum::splat(1.0, n)
+        };
         let k = self.sphere_count(mix, seg_len, rng.random());
         let l0 = mix.pick(rng.random());
         let (st0, a0) = (st.0[l0], a.0[l0]);
