@@ -187,10 +187,11 @@ mod tests {
     use super::*;
 
     /// `map_runs` gives the bits of a bin-by-bin loop: on runs of equal coefficients (grey and
-    /// piecewise-grey spectra), on a coefficient that comes back after another (a run is only
-    /// its neighbours), on -0.0 beside 0.0 (different bits, each evaluated), and zero past `n`.
-    /// A cache that outlived its run, or keyed on value rather than bits, fails. (0 x inf is a
-    /// NaN either way; its sign bit is the compiler's choice, so NaNs only need to be NaNs.)
+    /// piecewise-grey spectra), on a coefficient that comes back after another, on -0.0 beside
+    /// 0.0 (different bits, each evaluated), and zero past `n`. A cache keyed on value rather
+    /// than bits fails at the -0.0 / 0.0 pair (`signum` tells them apart), one that is never
+    /// refreshed at the first change of coefficient. (0 x inf is a NaN either way; its sign bit
+    /// is the compiler's choice, so NaNs only need to be NaNs.)
     #[test]
     fn map_runs_matches_the_loop() {
         let mut s = Spectrum::ZERO;
