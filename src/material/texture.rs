@@ -1,5 +1,6 @@
 //! RGB image textures stored as per-texel spectra.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use glam::Vec2;
@@ -55,12 +56,20 @@ pub enum Wrap {
 
 /// Spectral texture: `n` bins per texel, row 0 at the top of the image. Lookups are bilinear;
 /// v = 0 is the bottom row (the OBJ / OpenGL convention).
+///
+/// Texels are stored as indices into a palette of their distinct spectra, each upsampled once.
+/// Patterns, labels and masks have a handful of colours: their palette stays in the L1 cache
+/// where one spectrum per texel (128 bytes at 32 bins) made every light-pass lookup a cache
+/// miss; a photograph's texels cost 4 bytes more each than they would stored whole.
 #[derive(Clone, Debug)]
 pub struct Texture {
     width: usize,
     height: usize,
     n: usize,
-    data: Vec<f32>,
+    /// Distinct spectra, `n` floats each.
+    palette: Vec<f32>,
+    /// Per texel (row-major, top row first), its spectrum's index in `palette`.
+    index: Vec<u32>,
     wrap: Wrap,
 }
 
@@ -74,16 +83,30 @@ impl Texture {
         to_spectrum: &dyn Fn([f32; 3]) -> Spectrum,
     ) -> Texture {
         let n = n_bins.clamp(1, MAX_BINS);
-        let mut data = Vec::with_capacity(width * height * n);
+        let texels = width.max(1) * height.max(1);
+        let mut palette = Vec::new();
+        let mut index = Vec::with_capacity(texels);
+        // Keyed by the colour's bits: equal texels share one upsampling and one entry.
+        let mut seen: HashMap<[u32; 3], u32> = HashMap::new();
         for &c in rgb.iter().take(width * height) {
-            data.extend_from_slice(to_spectrum(c).as_slice(n));
+            let i = *seen.entry(c.map(f32::to_bits)).or_insert_with(|| {
+                palette.extend_from_slice(to_spectrum(c).as_slice(n));
+                (palette.len() / n - 1) as u32
+            });
+            index.push(i);
         }
-        data.resize(width * height * n, 0.0);
+        if index.len() < texels {
+            // Missing texels are black, as a short buffer always read.
+            let black = (palette.len() / n) as u32;
+            palette.resize(palette.len() + n, 0.0);
+            index.resize(texels, black);
+        }
         Texture {
             width: width.max(1),
             height: height.max(1),
             n,
-            data,
+            palette,
+            index,
             wrap: Wrap::Repeat,
         }
     }
@@ -198,7 +221,7 @@ impl Texture {
 
     /// Largest and smallest value of any texel in any of its bins.
     pub fn value_range(&self) -> (f32, f32) {
-        self.data
+        self.palette
             .iter()
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
                 (lo.min(v), hi.max(v))
@@ -206,8 +229,8 @@ impl Texture {
     }
 
     fn texel(&self, x: usize, y: usize) -> &[f32] {
-        let i = (y * self.width + x) * self.n;
-        &self.data[i..i + self.n]
+        let i = self.index[y * self.width + x] as usize * self.n;
+        &self.palette[i..i + self.n]
     }
 
     /// Bilinear lookup, wrapping outside [0, 1] as the texture's [`Wrap`] says.
@@ -250,5 +273,64 @@ fn srgb_to_linear(c: f32) -> f32 {
         c / 12.92
     } else {
         ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// A made-up upsampling that tells bins and colours apart.
+    fn up(c: [f32; 3], n: usize) -> Spectrum {
+        let mut s = Spectrum::ZERO;
+        for (b, v) in s.0[..n].iter_mut().enumerate() {
+            *v = c[b % 3] * (b as f32 + 1.0);
+        }
+        s
+    }
+
+    /// Equal texels share one palette entry and one upsampling; every texel reads its own
+    /// colour's spectrum, and a lookup between texels blends them bilinearly.
+    #[test]
+    fn palette_holds_each_colour_once_and_texels_read_their_own() {
+        let (w, h, n) = (5, 3, 4);
+        // The third colour differs from the first by 1e-4 in blue: a palette entry of its own.
+        let colours = [[0.1, 0.2, 0.3], [0.9, 0.5, 0.0], [0.1, 0.2, 0.3001]];
+        let rgb: Vec<[f32; 3]> = (0..w * h).map(|i| colours[(i * 7 + i / 5) % 3]).collect();
+        let calls = Cell::new(0);
+        let counted = |c: [f32; 3]| {
+            calls.set(calls.get() + 1);
+            up(c, n)
+        };
+        let t = Texture::from_rgb(w, h, &rgb, n, &counted);
+        assert_eq!(calls.get(), 3);
+        assert_eq!(t.palette.len(), 3 * n);
+        for y in 0..h {
+            for x in 0..w {
+                assert_eq!(
+                    t.texel(x, y),
+                    &up(rgb[y * w + x], n).0[..n],
+                    "texel ({x}, {y})"
+                );
+            }
+        }
+        // Half way between texels (0, 0) and (1, 0) of the top row (v = 1 is the top).
+        let (a, b) = (up(rgb[0], n), up(rgb[1], n));
+        let mid = t.lookup(Vec2::new(1.0 / w as f32, 1.0 - 0.5 / h as f32));
+        for k in 0..n {
+            assert!((mid.0[k] - 0.5 * (a.0[k] + b.0[k])).abs() < 1e-6, "bin {k}");
+        }
+        assert_eq!(t.value_range(), (0.0, 0.9 * 4.0));
+    }
+
+    /// Texels the buffer does not hold are black, as before the palette.
+    #[test]
+    fn a_short_buffer_leaves_the_missing_texels_black() {
+        let t = Texture::from_rgb(2, 2, &[[0.5, 0.5, 0.5]], 3, &|c| up(c, 3));
+        assert_eq!(t.texel(0, 0), &up([0.5; 3], 3).0[..3]);
+        for (x, y) in [(1, 0), (0, 1), (1, 1)] {
+            assert_eq!(t.texel(x, y), &[0.0; 3]);
+        }
     }
 }
