@@ -75,7 +75,7 @@ impl ChunkSplats {
 
     /// [`Self::splat`] of light from light `light`, also added to its light layer when the
     /// pass keeps light layers (as [`PassBuffer::splat_from`]).
-    #[inline]
+    #[inline(always)]
     pub fn splat_from(
         &mut self,
         layer: Layer,
@@ -120,7 +120,7 @@ impl ChunkSplats {
     }
 
     /// Logs (or adds to the dense buffer) the `n` values of one splat into `slot`.
-    #[inline]
+    #[inline(always)]
     fn add_values(&mut self, slot: usize, values: impl Iterator<Item = f32>) {
         let n = self.n;
         if self.is_dense {

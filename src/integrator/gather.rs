@@ -363,7 +363,7 @@ impl Gather {
 
     /// Calls `f` for every volume whose bounds the segment `[o, o + d * len]` meets, with its
     /// segment record.
-    #[inline]
+    #[inline(always)]
     pub fn volumes_along(
         &self,
         o: Vec3,
@@ -394,7 +394,7 @@ impl Gather {
     /// instructions of work: reading the batch's segment records first, in a loop of
     /// independent loads, lets their cache misses overlap instead of each one waiting behind
     /// the previous candidate's work (1.5 % of fog-cube's wall time, docs/performance.md).
-    #[inline]
+    #[inline(always)]
     fn visit(&self, batch: &[u32], f: &mut impl FnMut(&SegmentRecord, &VolumeRecord)) {
         let mut touch = 0u8;
         for &k in batch {

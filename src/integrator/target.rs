@@ -16,7 +16,7 @@ pub enum Target {
 
 impl Target {
     /// Adds the sample `w * f * norm` to a pixel of record `pixel` (see `Target`).
-    #[inline]
+    #[inline(always)]
     pub fn splat(
         self,
         buf: &mut ChunkSplats,

@@ -89,7 +89,7 @@ impl VolumeEstimator for Spheres {
         capsule_bounds(c, c, radius)
     }
 
-    #[inline]
+    #[inline(always)]
     fn contribution(
         &self,
         f: &ForwardSegment,
@@ -144,7 +144,7 @@ impl VolumeEstimator for Spheres {
 /// recomputed from the sphere's optical depth at density 1 `u` (its distance `v.s` in a
 /// uniform medium) and the scalar the record keeps; `x` is the medium's `relative_extinction`,
 /// None when grey. One fast exp per bin (relative error < 3e-7), none in grey media.
-#[inline]
+#[inline(always)]
 pub fn sphere_weight(
     med: &Medium,
     x: Option<&Spectrum>,
@@ -198,7 +198,7 @@ impl SphereChord {
 
 /// Intersects the forward segment `o + v lam`, `lam in [0, len]` (`v` unit) with the sphere of
 /// centre `c` and radius `r`. `None` if they do not overlap.
-#[inline]
+#[inline(always)]
 pub fn segment_sphere(o: Vec3, v: Vec3, len: f32, c: Vec3, r: f32) -> Option<SphereChord> {
     let oc = o - c;
     let b = oc.dot(v);
@@ -230,7 +230,7 @@ pub fn segment_sphere(o: Vec3, v: Vec3, len: f32, c: Vec3, r: f32) -> Option<Sph
 /// crossings, segments that end inside (forward extinctions) and segments that start inside
 /// alike, so the only bias left is the O((sigma_t R)^2) blur of averaging over the ball. Its
 /// cost over counting crossings: chord-length noise, +1/8 relative variance per full crossing.
-#[inline]
+#[inline(always)]
 pub fn track_length_density(chord: &SphereChord, r: f32) -> f32 {
     chord.len() * 3.0 / (4.0 * PI * r * r * r)
 }

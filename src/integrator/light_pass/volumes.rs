@@ -55,6 +55,7 @@ impl ForwardTracer<'_> {
     /// `gather_volumes_in` for one estimator. Volumes of another medium count too when their
     /// medium is bounded only by index-matched boundaries, across which the radiance field is
     /// continuous (method note 8).
+    #[inline(always)]
     fn gather_with<E: VolumeEstimator>(
         &mut self,
         e: &E,
