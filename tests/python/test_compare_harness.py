@@ -265,3 +265,22 @@ def test_per_bin_splits_each_lights_power():
     del photometric["lights"][0]["power"]
     with pytest.raises(SystemExit, match="luminous_flux"):
         per_bin.light_shares(photometric, scene.parent, grid)
+
+
+def test_protocol_density_scenes_map_to_one_mitsuba_render():
+    """Issue 30's protocol times one Mitsuba render per image: its density scenes must be grey
+    (Mitsuba's grid medium has one extinction for all wavelengths) and mappable, while the
+    chromatic height fog, which Mitsuba renders once per bin group, is refused."""
+    import protocol_scene
+
+    scenes = ROOT / "tools" / "compare" / "scenes"
+    for name, kind in (("height-fog", "height"), ("fog-bank", "layer")):
+        path = scenes / f"{name}.toml"
+        desc = protocol_scene.edited_desc(path, [])
+        (medium,) = desc["media"].values()
+        assert medium["density"]["type"] == kind
+        assert not protocol_scene.spectral_media(desc, path.parent)
+        protocol_scene.check_mappable(desc, path.parent)
+    chromatic = scenes / "height-fog-chromatic.toml"
+    with pytest.raises(NotImplementedError, match="chromatic medium with a density"):
+        protocol_scene.check_mappable(protocol_scene.edited_desc(chromatic, []), chromatic.parent)

@@ -72,5 +72,18 @@ trace chromatic-fog 3e8 scenes/chromatic-fog.toml
 measure fog-room-laser scenes/fog-room-laser.toml --reference brume \
     --set 'lights.3.spectrum="laser-532nm.csv"' --times 10
 measure smoke-plume scenes/smoke-plume.toml --times 10
+# The analytic density fields (docs/media.md): exponential height fog under a low sun and a fog
+# bank under a spot lamp. The tracer refuses density fields, so the reference is Mitsuba's. Under
+# the parallel light it is rendered with `independent` (its `stratified` sampler reads a gradient
+# under fog-cube's parallel light), then the pilot's sampler runs against the same halves.
+HF=tools/compare/scenes/height-fog.toml
+"${P[@]}" "$HF" --times 10 60 --ref-seconds "$REF" --sampler independent --work "$OUT/height-fog-work" --out "$OUT/height-fog-independent"
+HFREF=$(find "$OUT/height-fog-work" -name half-a.exr 2>/dev/null | head -1 || true)
+"${P[@]}" "$HF" --times 10 60 --reference files --reference-halves "$HFREF" "${HFREF%half-a.exr}half-b.exr" \
+    --work "$OUT/height-fog-work" --out "$OUT/height-fog"
+# The fog bank's pilot (2026-11-29) disqualified `stratified` (a NaN pixel) and put `multijitter`
+# 1 % ahead of `independent`, within its noise; `multijitter` then wrote 8 and 16 NaN pixels into
+# the reference's halves, so the bank is measured with `independent`.
+measure fog-bank tools/compare/scenes/fog-bank.toml --times 10 60 --sampler independent
 
 [[ "$MITSUBA_PY" == echo ]] || cat "$OUT"/*.md
