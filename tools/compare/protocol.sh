@@ -77,8 +77,8 @@ measure smoke-plume scenes/smoke-plume.toml --times 10
 # the parallel light it is rendered with `independent` (its `stratified` sampler reads a gradient
 # under fog-cube's parallel light), then the pilot's sampler runs against the same halves.
 HF=tools/compare/scenes/height-fog.toml
-"${P[@]}" "$HF" --times 10 60 --ref-seconds "$REF" --sampler independent --work "$OUT/height-fog-work" --out "$OUT/height-fog-independent"
-HFREF=$(find "$OUT/height-fog-work" -name half-a.exr 2>/dev/null | head -1 || true)
+"${P[@]}" "$HF" --times 10 60 --ref-seconds "$REF" --sampler independent --work "$OUT/height-fog-independent-work" --out "$OUT/height-fog-independent"
+HFREF=$(find "$OUT/height-fog-independent-work" -name half-a.exr 2>/dev/null | head -1 || true)
 "${P[@]}" "$HF" --times 10 60 --reference files --reference-halves "$HFREF" "${HFREF%half-a.exr}half-b.exr" \
     --work "$OUT/height-fog-work" --out "$OUT/height-fog"
 # The fog bank's pilot (2026-11-29) disqualified `stratified` (a NaN pixel) and put `multijitter`
