@@ -266,7 +266,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// Renders pass `pass` of the seed's sequence with the integrator as configured, at the
-    /// radius of film pass `film_pass`, or None when `stop` was set.
+    /// radius of film pass `film_pass`, or None when `stop` was set. A pilot outside the film
+    /// draws the random numbers of another pass (`Tuner::random_pass`).
     fn render_into(
         &mut self,
         pass: u64,
@@ -281,7 +282,7 @@ impl<'a> Renderer<'a> {
         let norm = 1.0 / (integrator.forward_rays as f32 * spp);
         let budget = integrator.settings.gather_budget();
         let mut work = Work::default();
-        let stride = self.tuner.as_ref().map_or(1, |t| t.pixel_stride(pass));
+        let (stride, pass) = self.sampling(pass);
         let sensors = self.sensor_pass(pass, stop)?;
         let (scene, integrator) = (self.scene, &self.integrator);
         let mut row = 0;
@@ -346,6 +347,14 @@ impl<'a> Renderer<'a> {
             s.splat(&mut buf, integrator);
         }
         Some((buf, work))
+    }
+
+    /// How pass `pass` of the sequence samples: the stride of its pixel lattice, and the pass
+    /// whose random numbers it draws (its own, or a pilot's shared ones: `Tuner::random_pass`).
+    fn sampling(&self, pass: u64) -> (u32, u64) {
+        self.tuner
+            .as_ref()
+            .map_or((1, pass), |t| (t.pixel_stride(pass), t.random_pass(pass)))
     }
 
     /// The sensor paths of pass `pass` (Some(None) without illuminance sensors); None when

@@ -14,6 +14,9 @@
 //! numbers: the estimators stay unbiased. Passes use independent scrambles, so pass estimates
 //! stay independent (the film's noise estimate and the pilots' variances assume that) and the
 //! numbers of a pass depend only on (seed, pass, index): pass ranges and merges stay bit-exact.
+//! The one planned exception: the automatic settings' pilots outside the film repeat their first
+//! pair's passes in every configuration (`Tuner::random_pass`), so that the configurations'
+//! variances are compared on the same forward rays.
 
 use rand::{RngCore, SeedableRng};
 use rand_pcg::Pcg64Mcg;

@@ -18,17 +18,17 @@ impl Tuner {
         let q_lo = Q_PILOT as f64;
         let (mut media, mut fits) = (Vec::new(), Vec::new());
         for m in 0..config.q.len() {
-            let Some((_, v)) = self.measure(Role::Medium(m)) else {
+            let (Some((_, v)), Some(g)) =
+                (self.measure(Role::Medium(m)), self.gain(Role::Medium(m)))
+            else {
                 continue;
             };
-            let gain = b.gain_over(&v);
+            let gain = g.significant();
             if gain <= 0.0 {
                 report.push(format!(
                     "q[{m}] = 1: q = {q_lo} did not lower the variance by {Z_SIGNIFICANT} \
-                     standard errors ({:.4e} vs {:.4e} +- {:.1e})",
-                    v.variance,
-                    b.variance,
-                    b.se.hypot(v.se)
+                     standard errors ({:.4e} vs {:.4e}: gain {:.4e} +- {:.1e} pixel by pixel)",
+                    v.variance, b.variance, g.gain, g.se
                 ));
                 continue;
             }
@@ -102,8 +102,8 @@ impl Tuner {
         // A budget whose pilot did not lower the variance significantly stays as it is: the
         // pilots say nothing about it.
         let gain = |role| {
-            self.measure(role)
-                .map(|(_, m)| b.gain_over(&m))
+            self.gain(role)
+                .map(|g| g.significant())
                 .filter(|g| *g > 0.0)
         };
         let (rays_gain, samples_gain) = (gain(Role::Rays), gain(Role::Samples));

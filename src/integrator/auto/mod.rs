@@ -105,18 +105,45 @@ struct Measure {
 /// (rare bright samples, as of a laser seen through fog, make the variance itself noisy).
 pub const Z_SIGNIFICANT: f64 = 2.0;
 
-impl Measure {
-    /// `self.variance - other.variance` if it exceeds `Z_SIGNIFICANT` standard errors,
-    /// else 0.
-    fn gain_over(&self, other: &Measure) -> f64 {
-        // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
-        // missed twice) measured nothing, not a variance of zero.
-        if other.variance == 0.0 && other.se == 0.0 {
-            return 0.0;
+/// The gain of one pilot over another: the difference of their variances per pass, with its
+/// standard error, from their per-pixel estimates `d = (x1 - x2)^2 / 2` taken pixel by pixel.
+///
+/// Pilots outside the film draw the same random numbers in every configuration
+/// (`Tuner::random_pass`): the forward rays of the Base pair are, ray for ray, those of the
+/// Medium pair (and the first of the Rays pair's). Their noise, most of a pilot's variance at
+/// the base budgets, then cancels in the per-pixel difference, and the standard error is that
+/// of the difference alone. Compared as two independent variances instead (the sum of their
+/// standard errors in quadrature), height-fog's Base and Medium pilots, 12 500 forward rays
+/// each, could not resolve q = 0.25's gain on 2 seeds of 16, which then kept q = 1 and passes
+/// of 30 % more error (docs/performance.md, "The automatic choice").
+#[derive(Clone, Copy, Debug)]
+struct Gain {
+    gain: f64,
+    se: f64,
+}
+
+impl Gain {
+    /// The gain of `after` over `before` (per-pixel `d` on the same pixels, each already scaled
+    /// to the whole image: `Tuner::record`). The standard error is estimated by the sum of the
+    /// squared per-pixel differences: pixels are taken as independent, as in `Measure::se`, and
+    /// the estimate errs high by the sum of the squared per-pixel mean gains.
+    fn paired(before: &[f64], after: &[f64]) -> Self {
+        let (mut gain, mut sq) = (0.0, 0.0);
+        for (b, a) in before.iter().zip(after) {
+            let e = b - a;
+            gain += e;
+            sq += e * e;
         }
-        let d = self.variance - other.variance;
-        if d > Z_SIGNIFICANT * self.se.hypot(other.se) {
-            d
+        Gain {
+            gain,
+            se: sq.sqrt(),
+        }
+    }
+
+    /// The gain if it exceeds `Z_SIGNIFICANT` standard errors, else 0.
+    fn significant(&self) -> f64 {
+        if self.gain > Z_SIGNIFICANT * self.se {
+            self.gain
         } else {
             0.0
         }
@@ -146,6 +173,9 @@ pub struct Tuner {
     /// Per-pixel totals of the first pass of the pair being recorded.
     first: Option<Vec<f64>>,
     measures: Vec<Measure>,
+    /// Per measured pair, each pixel's `d = (x1 - x2)^2 / 2` times the lattice's scale: the
+    /// pixel's share of the variance per pass (`Gain::paired` compares them pixel by pixel).
+    shares: Vec<Vec<f64>>,
     choice: Option<Choice>,
 }
 
@@ -199,6 +229,7 @@ impl Tuner {
             recorded: 0,
             first: None,
             measures: Vec::new(),
+            shares: Vec::new(),
             choice: None,
         })
     }
@@ -300,13 +331,14 @@ impl Tuner {
         };
         // Per pixel d = (x1 - x2)^2 / 2 is sigma^2 chi^2_1: E[d^2] = 3 sigma^4 and
         // Var(d) = 2 sigma^4 = (2/3) E[d^2], which gives the sum's standard error.
-        let (mut variance, mut d2) = (0.0, 0.0);
-        for (a, b) in first.iter().zip(&totals) {
-            let d = 0.5 * (a - b) * (a - b);
-            variance += d;
-            d2 += d * d;
-        }
-        let (variance, d2) = (variance * k, d2 * k * k);
+        let shares: Vec<f64> = first
+            .iter()
+            .zip(&totals)
+            .map(|(a, b)| 0.5 * (a - b) * (a - b) * k)
+            .collect();
+        let variance = shares.iter().sum();
+        let d2 = shares.iter().map(|d| d * d).sum::<f64>();
+        self.shares.push(shares);
         if let Some(m) = self.measures.last_mut() {
             m.variance = variance;
             m.se = (2.0 / 3.0 * d2).sqrt();
@@ -334,6 +366,34 @@ impl Tuner {
     fn measure(&self, role: Role) -> Option<(&PassConfig, Measure)> {
         let i = self.pilots.iter().position(|(r, _)| *r == role)?;
         Some((&self.pilots[i].1, *self.measures.get(i)?))
+    }
+
+    /// How much pilot `role` lowered the variance below the Base pilot's, pixel by pixel
+    /// (`Gain`); None when it was not measured.
+    fn gain(&self, role: Role) -> Option<Gain> {
+        let at = |r: Role| self.pilots.iter().position(|(p, _)| *p == r);
+        let (b, i) = (at(Role::Base)?, at(role)?);
+        let (base, other) = (self.shares.get(b)?, self.shares.get(i)?);
+        // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
+        // missed twice) measured nothing, not a variance of zero.
+        if other.iter().all(|d| *d == 0.0) {
+            return Some(Gain { gain: 0.0, se: 0.0 });
+        }
+        Some(Gain::paired(base, other))
+    }
+
+    /// The pass of the seed's sequence whose random numbers pass `pass` draws (film passes
+    /// draw their own). Pilots outside the film repeat the first pair's numbers in every
+    /// configuration, so that their variances differ by what the configuration changes and not
+    /// by their noise (`Gain`); the two passes of a pair stay independent. Film pilots (q alone
+    /// automatic) are passes of the image and keep their own numbers: the film's passes must
+    /// be independent.
+    pub fn random_pass(&self, pass: u64) -> u64 {
+        if pass < self.pilot_passes() && !self.pilots_join_film() {
+            pass % REPEATS
+        } else {
+            pass
+        }
     }
 
     fn choose(&self) -> Choice {

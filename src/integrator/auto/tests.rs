@@ -170,3 +170,97 @@ fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
         assert_eq!(t.config(pass).map(|c| c.forward_rays), Some(50_000));
     }
 }
+
+/// Pilots outside the film draw the first pair's random numbers in every configuration; the
+/// film's passes and film pilots draw their own.
+#[test]
+fn pilots_outside_the_film_share_their_random_numbers() {
+    let t = tuner(IntegratorDesc::default());
+    let p = t.pilot_passes();
+    assert_eq!(p, 8);
+    for pass in 0..p {
+        assert_eq!(t.random_pass(pass), pass % REPEATS, "pilot pass {pass}");
+    }
+    for pass in p..p + 4 {
+        assert_eq!(t.random_pass(pass), pass, "film pass {pass}");
+    }
+    let t = q_tuner();
+    for pass in 0..t.pilot_passes() + 2 {
+        assert_eq!(t.random_pass(pass), pass, "film pilot {pass}");
+    }
+}
+
+/// A tuner with every setting automatic for a 256 x 256 image (the pixel count sets how well a
+/// pilot knows its variance).
+fn auto_tuner_256() -> Tuner {
+    let base = PassConfig {
+        q: vec![1.0],
+        forward_rays: 50_000,
+        camera_samples: 1,
+    };
+    Tuner::new(&IntegratorDesc::default(), 1, base, (256, 256)).expect("automatic")
+}
+
+/// Feeds every pilot pass of `t` (a 256 x 256 image): per pixel a component of variance `shared`
+/// (per pass, over the image) drawn from the pass's random numbers (`random_pass`, or the pass
+/// itself when `paired` is false: independent pilots), as the forward rays' noise is, plus one
+/// of variance `own(config)` that only the pilot's configuration sets.
+fn feed_shared(t: &mut Tuner, shared: f64, own: impl Fn(&PassConfig) -> f64, paired: bool) {
+    const N: usize = 256 * 256;
+    let uniform =
+        |rng: &mut Pcg64Mcg, sd: f64| sd * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0);
+    let mut own_rng = Pcg64Mcg::seed_from_u64(11);
+    for pass in 0..t.pilot_passes() {
+        let c = t.config(pass).expect("a pilot pass").clone();
+        let key = if paired { t.random_pass(pass) } else { pass };
+        let mut shared_rng = Pcg64Mcg::seed_from_u64(1000 + key);
+        let (sd_shared, sd_own) = ((shared / N as f64).sqrt(), (own(&c) / N as f64).sqrt());
+        let totals = (0..N)
+            .map(|_| 1.0 + uniform(&mut shared_rng, sd_shared) + uniform(&mut own_rng, sd_own))
+            .collect();
+        let traced = (N / (t.pixel_stride(pass) as usize).pow(2)) as u64;
+        let work = Work {
+            paths: traced * c.camera_samples as u64,
+            volumes: traced * c.camera_samples as u64,
+            rays: c.forward_rays,
+            hits: c.forward_rays * c.camera_samples as u64 * traced / N as u64,
+        };
+        t.record(pass, totals, work);
+    }
+}
+
+/// q = 0.25 lowers the variance from 404 to 401 per pass, where 400 of it is noise that every
+/// configuration shares (the forward rays' at the pilots' budgets). Compared pixel by pixel
+/// over the 16 384 lattice pixels, the gain of 3 has a standard error of about 0.7 (z about
+/// 4.3: the noise left is the shared part times the configuration's own, `Gain::paired`), and
+/// q falls. The same pilots drawn independently compare two variances each known to about
+/// 1.1 %: a standard error of about 5 (z under 1), which no gate can act on. That is what
+/// kept q = 1 on 2 of 16 of height-fog's seeds before the pilots shared their numbers.
+#[test]
+fn shared_pilot_noise_cancels_and_resolves_q_gain() {
+    let own = |c: &PassConfig| if c.q[0] < 1.0 { 1.0 } else { 4.0 };
+    let mut t = auto_tuner_256();
+    feed_shared(&mut t, 400.0, own, true);
+    let paired = t.gain(Role::Medium(0)).expect("measured");
+    assert!(paired.gain > Z_SIGNIFICANT * paired.se, "{paired:?}");
+    assert!((paired.gain / 3.0 - 1.0).abs() < 0.7, "{paired:?}");
+    let choice = t.choice().expect("chosen");
+    assert!(choice.config.q[0] < 1.0, "{:?}", choice.report);
+
+    let mut t = auto_tuner_256();
+    feed_shared(&mut t, 400.0, own, false);
+    let apart = t.gain(Role::Medium(0)).expect("measured");
+    assert!(apart.se > 4.0 * paired.se, "{apart:?} against {paired:?}");
+}
+
+/// No gain, the same shared noise: the paired comparison must not invent one (the gate's
+/// false positive).
+#[test]
+fn shared_pilot_noise_invents_no_gain() {
+    let mut t = auto_tuner_256();
+    feed_shared(&mut t, 400.0, |_| 4.0, true);
+    let g = t.gain(Role::Medium(0)).expect("measured");
+    assert!(g.gain.abs() < Z_SIGNIFICANT * g.se, "{g:?}");
+    let choice = t.choice().expect("chosen");
+    assert_eq!(choice.config.q[0], 1.0, "{:?}", choice.report);
+}
