@@ -37,27 +37,37 @@ fn q_tuner() -> Tuner {
     })
 }
 
-/// Feeds every pilot pass: pixel values of mean 1 and variance `variance(config)` over the
-/// image (64 x 64 pixels), and work that grows with the configuration's rays and camera paths,
-/// counted, like the renderer's, on the pixels the pass traces (`pixel_stride`).
-fn feed(t: &mut Tuner, variance: impl Fn(&PassConfig) -> f64) {
-    let mut rng = Pcg64Mcg::seed_from_u64(7);
+/// Uniform noise of standard deviation `sd` (variance sd^2).
+fn uniform(rng: &mut Pcg64Mcg, sd: f64) -> f64 {
+    sd * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0)
+}
+
+/// Feeds every pilot pass of `t`, an image of `pixels` pixels: the totals `totals(pass,
+/// config)`, and work that grows with the configuration's rays and camera paths, counted, like
+/// the renderer's, on the pixels the pass traces (`pixel_stride`).
+fn feed_totals(t: &mut Tuner, pixels: usize, mut totals: impl FnMut(u64, &PassConfig) -> Vec<f64>) {
     for pass in 0..t.pilot_passes() {
         let c = t.config(pass).expect("a pilot pass").clone();
-        let sd = (variance(&c) / PIXELS as f64).sqrt();
-        // Uniform noise of standard deviation sd: variance sd^2 per pixel.
-        let totals = (0..PIXELS)
-            .map(|_| 1.0 + sd * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0))
-            .collect();
-        let traced = (PIXELS / (t.pixel_stride(pass) as usize).pow(2)) as u64;
+        let values = totals(pass, &c);
+        let traced = (pixels / (t.pixel_stride(pass) as usize).pow(2)) as u64;
         let work = Work {
             paths: traced * c.camera_samples as u64,
             volumes: traced * c.camera_samples as u64,
             rays: c.forward_rays,
-            hits: c.forward_rays * c.camera_samples as u64 * traced / PIXELS as u64,
+            hits: c.forward_rays * c.camera_samples as u64 * traced / pixels as u64,
         };
-        t.record(pass, totals, work);
+        t.record(pass, values, work);
     }
+}
+
+/// Feeds every pilot pass: pixel values of mean 1 and variance `variance(config)` over the
+/// image (64 x 64 pixels).
+fn feed(t: &mut Tuner, variance: impl Fn(&PassConfig) -> f64) {
+    let mut rng = Pcg64Mcg::seed_from_u64(7);
+    feed_totals(t, PIXELS, |_, c| {
+        let sd = (variance(c) / PIXELS as f64).sqrt();
+        (0..PIXELS).map(|_| 1.0 + uniform(&mut rng, sd)).collect()
+    });
 }
 
 #[test]
@@ -207,26 +217,17 @@ fn auto_tuner_256() -> Tuner {
 /// of variance `own(config)` that only the pilot's configuration sets.
 fn feed_shared(t: &mut Tuner, shared: f64, own: impl Fn(&PassConfig) -> f64, paired: bool) {
     const N: usize = 256 * 256;
-    let uniform =
-        |rng: &mut Pcg64Mcg, sd: f64| sd * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0);
     let mut own_rng = Pcg64Mcg::seed_from_u64(11);
-    for pass in 0..t.pilot_passes() {
-        let c = t.config(pass).expect("a pilot pass").clone();
-        let key = if paired { t.random_pass(pass) } else { pass };
-        let mut shared_rng = Pcg64Mcg::seed_from_u64(1000 + key);
-        let (sd_shared, sd_own) = ((shared / N as f64).sqrt(), (own(&c) / N as f64).sqrt());
-        let totals = (0..N)
+    let keys: Vec<u64> = (0..t.pilot_passes())
+        .map(|pass| if paired { t.random_pass(pass) } else { pass })
+        .collect();
+    feed_totals(t, N, |pass, c| {
+        let mut shared_rng = Pcg64Mcg::seed_from_u64(1000 + keys[pass as usize]);
+        let (sd_shared, sd_own) = ((shared / N as f64).sqrt(), (own(c) / N as f64).sqrt());
+        (0..N)
             .map(|_| 1.0 + uniform(&mut shared_rng, sd_shared) + uniform(&mut own_rng, sd_own))
-            .collect();
-        let traced = (N / (t.pixel_stride(pass) as usize).pow(2)) as u64;
-        let work = Work {
-            paths: traced * c.camera_samples as u64,
-            volumes: traced * c.camera_samples as u64,
-            rays: c.forward_rays,
-            hits: c.forward_rays * c.camera_samples as u64 * traced / N as u64,
-        };
-        t.record(pass, totals, work);
-    }
+            .collect()
+    });
 }
 
 /// q = 0.25 lowers the variance from 404 to 401 per pass, where 400 of it is noise that every
