@@ -115,7 +115,7 @@ pub const Z_SIGNIFICANT: f64 = 2.0;
 /// of the difference alone. Compared as two independent variances instead (the sum of their
 /// standard errors in quadrature), height-fog's Base and Medium pilots, 12 500 forward rays
 /// each, could not resolve q = 0.25's gain on 2 seeds of 16, which then kept q = 1 and passes
-/// of 30 % more error (docs/performance.md, "The automatic choice").
+/// of 30 % more error (docs/performance.md, "The automatic choice on height-fog").
 #[derive(Clone, Copy, Debug)]
 struct Gain {
     gain: f64,
