@@ -36,6 +36,8 @@ pub struct Stats {
     pub forward_rays: u64,
     /// Gather candidates the forward rays met (surface spheres and volumes tested).
     pub gather_hits: u64,
+    /// Segments the forward rays traced.
+    pub forward_segments: u64,
     /// Paths traced from illuminance sensors.
     pub sensor_paths: u64,
     pub peak_gather_bytes: usize,
@@ -50,6 +52,21 @@ pub struct Stats {
     /// Pilot passes of automatic settings rendered again, not added (a resumed render or a
     /// part that starts after them).
     pub pilot_passes: u64,
+}
+
+impl Stats {
+    /// Adds a gather tile's camera paths, forward rays and the light pass's counts, and the
+    /// times of its phases (camera pass, gather build, light pass).
+    fn add_tile(&mut self, paths: u64, rays: u64, light: &LightJob, t: [Instant; 4]) {
+        self.gather_hits += light.hits.load(Ordering::Relaxed);
+        self.forward_segments += light.segments.load(Ordering::Relaxed);
+        self.camera_paths += paths;
+        self.forward_rays += rays;
+        self.camera_seconds += (t[1] - t[0]).as_secs_f64();
+        self.build_seconds += (t[2] - t[1]).as_secs_f64();
+        self.light_seconds += (t[3] - t[2]).as_secs_f64();
+        self.tiles += 1;
+    }
 }
 
 /// Renders passes of a scene with an integrator into a film.
@@ -322,6 +339,7 @@ impl<'a> Renderer<'a> {
                 tile,
                 norm,
                 hits: AtomicU64::new(0),
+                segments: AtomicU64::new(0),
                 // The sensor paths' records join the first tile's light pass only.
                 sensors: sensors.as_ref().filter(|_| tile == 0).map(|s| &s.gather),
             };
@@ -333,13 +351,9 @@ impl<'a> Renderer<'a> {
             work.paths += out.paths;
             work.rays += integrator.forward_rays;
             work.hits += light.hits.load(Ordering::Relaxed);
-            self.stats.gather_hits += light.hits.load(Ordering::Relaxed);
-            self.stats.camera_paths += out.paths;
-            self.stats.forward_rays += integrator.forward_rays;
-            self.stats.camera_seconds += (t1 - t0).as_secs_f64();
-            self.stats.build_seconds += (t2 - t1).as_secs_f64();
-            self.stats.light_seconds += (t3 - t2).as_secs_f64();
-            self.stats.tiles += 1;
+            let rays = integrator.forward_rays;
+            self.stats
+                .add_tile(out.paths, rays, &light, [t0, t1, t2, t3]);
             row = next;
             tile += 1;
         }

@@ -194,12 +194,13 @@ fn render(
 fn print_work(renderer: &Renderer) {
     let s = renderer.stats();
     let _ = outln!(
-        "work: {} camera paths, {} volume records, {} forward rays, {} gather hits; \
-         seconds: camera {:.3}, build {:.3}, light {:.3}",
+        "work: {} camera paths, {} volume records, {} forward rays, {} gather hits, {} \
+         forward segments; seconds: camera {:.3}, build {:.3}, light {:.3}",
         s.camera_paths,
         s.volume_records,
         s.forward_rays,
         s.gather_hits,
+        s.forward_segments,
         s.camera_seconds,
         s.build_seconds,
         s.light_seconds

@@ -1,9 +1,10 @@
 //! The tuner's choice from its measures: q per medium by the time-optimal rule (method note
-//! 7), then the budgets that minimise variance x cost per pass.
+//! 7), then the budgets that minimise variance x cost per pass, at the per-pixel and the block
+//! scale (`blocks`).
 
 use super::model::{self, BudgetSearch, CostSplit, NoiseSplit, QFit};
 use super::{
-    BUDGET_FACTOR, MAX_CAMERA_SAMPLES, Measure, PassConfig, Q_PILOT, RAYS_RANGE, Role, Tuner,
+    BUDGET_FACTOR, Gain, MAX_CAMERA_SAMPLES, Measure, PassConfig, Q_PILOT, RAYS_RANGE, Role, Tuner,
     Z_SIGNIFICANT,
 };
 
@@ -86,9 +87,47 @@ impl Tuner {
         ));
     }
 
+    /// The noise model `a/s + b/N + c/(sN)` at the pilots' budgets `(s, n)` from the Base
+    /// pilot's variance `v` and the Rays and Samples pilots' gains over it (None: not
+    /// significant); None when neither gain is.
+    fn split(s: f64, n: f64, v: f64, gains: [Option<f64>; 2]) -> Option<NoiseSplit> {
+        let k = BUDGET_FACTOR as f64;
+        match gains {
+            [Some(gr), Some(gs)] => Some(NoiseSplit::from_three(s, n, k, v, v - gr, v - gs)),
+            [Some(gr), None] => Some(NoiseSplit::from_forward_rays(s, n, v, k, v - gr)),
+            [None, Some(gs)] => Some(NoiseSplit::from_camera_samples(s, n, v, k, v - gs)),
+            [None, None] => None,
+        }
+    }
+
+    /// The per-pixel noise model at the pilots' budgets and, where the blocks resolve it, the
+    /// block model (`blocks`); None when neither more forward rays nor more camera paths
+    /// lowered the per-pixel variance significantly. A budget whose pilot did not lower the
+    /// variance significantly stays as it is: the pilots say nothing about it; the block model
+    /// uses a budget only where the per-pixel pilots resolved it.
+    pub(super) fn noise_splits(&self, b: &Measure) -> Option<(NoiseSplit, Option<NoiseSplit>)> {
+        let base = &self.pilots.first()?.1;
+        let (s, n) = (base.camera_samples as f64, base.forward_rays as f64);
+        let significant = |g: Option<Gain>| g.map(|g| g.significant()).filter(|g| *g > 0.0);
+        let roles = [Role::Rays, Role::Samples];
+        let gains = roles.map(|r| significant(self.gain(r)));
+        let split = Self::split(s, n, b.variance, gains)?;
+        let block_split = self.block_variance().and_then(|v| {
+            let mut blocks = roles.map(|r| significant(self.block_gain(r)));
+            for (g, p) in blocks.iter_mut().zip(&gains) {
+                *g = g.filter(|_| p.is_some());
+            }
+            Self::split(s, n, v, blocks)
+        });
+        Some((split, block_split))
+    }
+
     /// Sets the automatic budgets for a pass whose variance is `scale` times the base pilot's
     /// and whose cost is `cost`. The models are fitted at the pilots' budgets (`config`'s on
     /// entry); the search's range and the budgets the pilots say nothing about are the scene's.
+    /// The budgets minimise the product of the per-pixel and the block variance (`blocks`)
+    /// times the cost squared: each scale's efficiency counts alike. Without a significant
+    /// block gain the per-pixel model decides alone.
     pub(super) fn choose_budgets(
         &self,
         config: &mut PassConfig,
@@ -98,22 +137,11 @@ impl Tuner {
         report: &mut Vec<String>,
     ) {
         let (s, n) = (config.camera_samples as f64, config.forward_rays as f64);
-        let k = BUDGET_FACTOR as f64;
-        // A budget whose pilot did not lower the variance significantly stays as it is: the
-        // pilots say nothing about it.
-        let gain = |role| {
-            self.gain(role)
-                .map(|g| g.significant())
-                .filter(|g| *g > 0.0)
+        let Some((split, block_split)) = self.noise_splits(&b) else {
+            return self.cheapest(config, report);
         };
-        let (rays_gain, samples_gain) = (gain(Role::Rays), gain(Role::Samples));
-        let v = b.variance;
-        let split = match (rays_gain, samples_gain) {
-            (Some(gr), Some(gs)) => NoiseSplit::from_three(s, n, k, v, v - gr, v - gs),
-            (Some(gr), None) => NoiseSplit::from_forward_rays(s, n, v, k, v - gr),
-            (None, Some(gs)) => NoiseSplit::from_camera_samples(s, n, v, k, v - gs),
-            (None, None) => return self.cheapest(config, report),
-        };
+        let resolved = |r| self.gain(r).is_some_and(|g| g.significant() > 0.0);
+        let (rays_gain, samples_gain) = (resolved(Role::Rays), resolved(Role::Samples));
         let noise = split.scaled(scale);
         // The base pass's cost parts, rescaled to the chosen q's cost.
         let [paths, volumes, rays, hits] = b.work.parts();
@@ -132,15 +160,26 @@ impl Tuner {
         let f = BUDGET_FACTOR * BUDGET_FACTOR;
         let base = &self.base;
         let search = BudgetSearch {
-            samples: samples_gain.is_none().then_some(base.camera_samples),
+            samples: (!samples_gain).then_some(base.camera_samples),
             max_samples: MAX_CAMERA_SAMPLES.min(base.camera_samples * f as u32),
-            rays: rays_gain.is_none().then_some(base.forward_rays),
+            rays: (!rays_gain).then_some(base.forward_rays),
             rays_range: (
                 RAYS_RANGE.0.max(base.forward_rays / f),
                 RAYS_RANGE.1.min(base.forward_rays * BUDGET_FACTOR),
             ),
         };
-        (config.camera_samples, config.forward_rays) = model::budgets(&noise, &costs, &search);
+        let noises: Vec<NoiseSplit> = std::iter::once(noise).chain(block_split).collect();
+        (config.camera_samples, config.forward_rays) = model::budgets(&noises, &costs, &search);
+        if let Some(bs) = block_split {
+            report.push(format!(
+                "budgets, blocks of {k} x {k} pilot points: variance per pass = {:.4e}/paths + \
+                 {:.4e}/rays + {:.4e}/(paths x rays)",
+                bs.camera,
+                bs.forward,
+                bs.pair,
+                k = super::blocks::BLOCK
+            ));
+        }
         report.push(format!(
             "budgets: camera paths {} and forward rays {}: variance per pass = {:.4e}/paths + \
              {:.4e}/rays + {:.4e}/(paths x rays), cost = {:.4e} paths + {:.4e} rays + {:.4e} \

@@ -20,8 +20,13 @@
 //! work (camera paths, volumes, forward rays, gather hits, weighed by [`COST_WEIGHTS`]), not
 //! measured time, for the same reason.
 
+pub mod blocks;
 mod choose;
+mod gain;
 pub mod model;
+
+use gain::Gain;
+pub use gain::Z_SIGNIFICANT;
 
 use super::settings::{IntegratorDesc, VolumeKind};
 
@@ -47,7 +52,13 @@ pub const RAYS_RANGE: (u64, u64) = (10_000, 4_000_000);
 
 /// Seconds per unit of work (camera path, volume record, forward ray, gather hit), measured
 /// with a release build on fog-cube (2 threads; docs/study.md, "Automatic settings"). Only their
-/// ratios matter: they weigh the counters into one cost.
+/// ratios matter: they weigh the counters into one cost. They are not the machine's true costs
+/// any more (a refit to 48 fixed-budget passes on the eight protocol scenes, with the forward
+/// segments as a fifth counter, predicts pass times twice as well), but the choices the refit
+/// makes (more camera paths) measured 0-3 % worse per pixel and 10-20 % worse on 4x4 bins at
+/// equal time: the noise model's camera term is biased high (clipped at 0), and these weights'
+/// dearer camera paths offset it (docs/performance.md, "The cost weights, refitted, and not
+/// kept").
 pub const COST_WEIGHTS: [f64; 4] = [5.0e-6, 8.0e-7, 2.5e-6, 3.0e-7];
 
 /// How one pass samples: q per medium, forward rays, camera paths per pixel.
@@ -100,56 +111,6 @@ struct Measure {
     work: Work,
 }
 
-/// How many standard errors a difference between two pilots' variances must reach to be
-/// acted on: below it the pilots cannot tell the settings apart, and the base values stay
-/// (rare bright samples, as of a laser seen through fog, make the variance itself noisy).
-pub const Z_SIGNIFICANT: f64 = 2.0;
-
-/// The gain of one pilot over another: the difference of their variances per pass, with its
-/// standard error, from their per-pixel estimates `d = (x1 - x2)^2 / 2` taken pixel by pixel.
-///
-/// Pilots outside the film draw the same random numbers in every configuration
-/// (`Tuner::random_pass`): the forward rays of the Base pair are, ray for ray, those of the
-/// Medium pair (and the first of the Rays pair's). Their noise, most of a pilot's variance at
-/// the base budgets, then cancels in the per-pixel difference, and the standard error is that
-/// of the difference alone. Compared as two independent variances instead (the sum of their
-/// standard errors in quadrature), height-fog's Base and Medium pilots, 12 500 forward rays
-/// each, could not resolve q = 0.25's gain on 2 seeds of 16, which then kept q = 1 and passes
-/// of 30 % more error (docs/performance.md, "The automatic choice on height-fog").
-#[derive(Clone, Copy, Debug)]
-struct Gain {
-    gain: f64,
-    se: f64,
-}
-
-impl Gain {
-    /// The gain of `after` over `before` (per-pixel `d` on the same pixels, each already scaled
-    /// to the whole image: `Tuner::record`). The standard error is estimated by the sum of the
-    /// squared per-pixel differences: pixels are taken as independent, as in `Measure::se`, and
-    /// the estimate errs high by the sum of the squared per-pixel mean gains.
-    fn paired(before: &[f64], after: &[f64]) -> Self {
-        let (mut gain, mut sq) = (0.0, 0.0);
-        for (b, a) in before.iter().zip(after) {
-            let e = b - a;
-            gain += e;
-            sq += e * e;
-        }
-        Gain {
-            gain,
-            se: sq.sqrt(),
-        }
-    }
-
-    /// The gain if it exceeds `Z_SIGNIFICANT` standard errors, else 0.
-    fn significant(&self) -> f64 {
-        if self.gain > Z_SIGNIFICANT * self.se {
-            self.gain
-        } else {
-            0.0
-        }
-    }
-}
-
 /// The configuration chosen, with the estimates behind it (printed by `brume render -v` and
 /// written into the outputs' metadata).
 #[derive(Clone, Debug, PartialEq)]
@@ -176,6 +137,10 @@ pub struct Tuner {
     /// Per measured pair, each pixel's `d = (x1 - x2)^2 / 2` times the lattice's scale: the
     /// pixel's share of the variance per pass (`Gain::paired` compares them pixel by pixel).
     shares: Vec<Vec<f64>>,
+    /// The same per block of the pair's grid (`blocks`): the low-frequency noise.
+    block_shares: Vec<Vec<f64>>,
+    /// The first pass's block means of the pair being recorded.
+    first_blocks: Option<Vec<f64>>,
     choice: Option<Choice>,
 }
 
@@ -230,6 +195,8 @@ impl Tuner {
             first: None,
             measures: Vec::new(),
             shares: Vec::new(),
+            block_shares: Vec::new(),
+            first_blocks: None,
             choice: None,
         })
     }
@@ -319,9 +286,13 @@ impl Tuner {
         // A lattice of 1/k of the pixels: its sums times k estimate the image's.
         let k = self.pixels() as f64 / totals.len().max(1) as f64;
         let work = scaled(&work, k);
+        let (w, h) = self.resolution;
+        let grid = (w.div_ceil(stride) as usize, h.div_ceil(stride) as usize);
+        let means = blocks::block_means(&totals, grid.0, grid.1);
         self.recorded += 1;
         let Some(first) = self.first.take() else {
             self.first = Some(totals);
+            self.first_blocks = Some(means);
             self.measures.push(Measure {
                 variance: 0.0,
                 se: 0.0,
@@ -339,6 +310,14 @@ impl Tuner {
         let variance = shares.iter().sum();
         let d2 = shares.iter().map(|d| d * d).sum::<f64>();
         self.shares.push(shares);
+        let first_means = self.first_blocks.take().unwrap_or_default();
+        self.block_shares.push(
+            first_means
+                .iter()
+                .zip(&means)
+                .map(|(a, b)| 0.5 * (a - b) * (a - b))
+                .collect(),
+        );
         if let Some(m) = self.measures.last_mut() {
             m.variance = variance;
             m.se = (2.0 / 3.0 * d2).sqrt();
@@ -371,9 +350,24 @@ impl Tuner {
     /// How much pilot `role` lowered the variance below the Base pilot's, pixel by pixel
     /// (`Gain`); None when it was not measured.
     fn gain(&self, role: Role) -> Option<Gain> {
+        self.gain_in(&self.shares, role)
+    }
+
+    /// The same for the block variance (`blocks`).
+    fn block_gain(&self, role: Role) -> Option<Gain> {
+        self.gain_in(&self.block_shares, role)
+    }
+
+    /// The Base pilot's block variance per pass.
+    fn block_variance(&self) -> Option<f64> {
+        let b = self.pilots.iter().position(|(p, _)| *p == Role::Base)?;
+        Some(self.block_shares.get(b)?.iter().sum())
+    }
+
+    fn gain_in(&self, shares: &[Vec<f64>], role: Role) -> Option<Gain> {
         let at = |r: Role| self.pilots.iter().position(|(p, _)| *p == r);
         let (b, i) = (at(Role::Base)?, at(role)?);
-        let (base, other) = (self.shares.get(b)?, self.shares.get(i)?);
+        let (base, other) = (shares.get(b)?, shares.get(i)?);
         // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
         // missed twice) measured nothing, not a variance of zero.
         if other.iter().all(|d| *d == 0.0) {

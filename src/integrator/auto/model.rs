@@ -180,8 +180,11 @@ pub struct BudgetSearch {
     pub rays_range: (u64, u64),
 }
 
-/// The (camera paths per pixel, forward rays) minimising variance x cost, by search.
-pub fn budgets(noise: &NoiseSplit, cost: &CostSplit, search: &BudgetSearch) -> (u32, u64) {
+/// The (camera paths per pixel, forward rays) minimising the product of the `noises`'
+/// variances times the cost to the power of their number, by search: with one model, variance
+/// x cost; with two (per pixel and per block, `auto::blocks`), the product of the two scales'
+/// inverse efficiencies, so that a per cent of either counts alike.
+pub fn budgets(noises: &[NoiseSplit], cost: &CostSplit, search: &BudgetSearch) -> (u32, u64) {
     let samples: Vec<u32> = match search.samples {
         Some(s) => vec![s],
         None => (1..=search.max_samples.max(1)).collect(),
@@ -200,7 +203,8 @@ pub fn budgets(noise: &NoiseSplit, cost: &CostSplit, search: &BudgetSearch) -> (
     for &s in &samples {
         for &n in &rays {
             let (sf, nf) = (s as f64, n as f64);
-            let score = noise.variance(sf, nf) * cost.cost(sf, nf);
+            let c = cost.cost(sf, nf);
+            let score: f64 = noises.iter().map(|v| v.variance(sf, nf) * c).product();
             if score < best.0 {
                 best = (score, s, n);
             }
@@ -342,7 +346,7 @@ mod tests {
             rays: None,
             rays_range: (1000, 10_000_000),
         };
-        let (s, n) = budgets(&noise, &cost, &search);
+        let (s, n) = budgets(&[noise], &cost, &search);
         let score = |s: f64, n: f64| noise.variance(s, n) * cost.cost(s, n);
         let best = score(s as f64, n as f64);
         for si in 1..=32 {

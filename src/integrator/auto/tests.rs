@@ -265,3 +265,83 @@ fn shared_pilot_noise_invents_no_gain() {
     let choice = t.choice().expect("chosen");
     assert_eq!(choice.config.q[0], 1.0, "{:?}", choice.report);
 }
+
+/// Feeds every pilot pass of `t` (a 256 x 256 image) values with brume's noise structure at
+/// per-pixel variances `a / s + b / g + c / (s g)`, with s the pilot's camera paths and g its
+/// forward rays in units of the Base pilot's: the camera paths' noise `a` is each pixel's own;
+/// the forward rays' `b` is a line (one value per row, as a forward segment's deposits are),
+/// the strongest noise and the one a pilot's whole variance is least sure of; their meeting
+/// `c` is each pixel's own. Every component is drawn from the pass's random numbers
+/// (`random_pass`), camera path by camera path and ray group by ray group, so that a pilot with
+/// 4 times the rays shares its first group with the Base pilot, as brume's pilots do.
+fn feed_structured(t: &mut Tuner, (a, b, c): (f64, f64, f64)) {
+    const W: usize = 256;
+    let keys: Vec<u64> = (0..t.pilot_passes()).map(|p| t.random_pass(p)).collect();
+    let base = t.config(0).expect("a pilot").clone();
+    let draw = |key: u64, part: u64, index: u64, len: usize, v: f64| -> Vec<f64> {
+        let mut rng = Pcg64Mcg::seed_from_u64((key << 32) ^ (part << 24) ^ index);
+        (0..len).map(|_| uniform(&mut rng, v.sqrt())).collect()
+    };
+    feed_totals(t, W * W, |pass, cfg| {
+        let key = keys[pass as usize];
+        let s = (cfg.camera_samples / base.camera_samples) as u64;
+        let g = cfg.forward_rays / base.forward_rays;
+        let mut x = vec![1.0f64; W * W];
+        for j in 0..g {
+            let line = draw(key, 1, j, W, b);
+            x.iter_mut()
+                .enumerate()
+                .for_each(|(p, v)| *v += line[p / W] / g as f64);
+        }
+        for i in 0..s {
+            let own = draw(key, 2, i, W * W, a);
+            x.iter_mut().zip(&own).for_each(|(v, o)| *v += o / s as f64);
+            for j in 0..g {
+                let pair = draw(key, 3, (i << 8) | j, W * W, c);
+                x.iter_mut()
+                    .zip(&pair)
+                    .for_each(|(v, o)| *v += o / (s * g) as f64);
+            }
+        }
+        x
+    });
+}
+
+/// The forward rays' noise is lines, the camera paths' is each pixel's own (`feed_structured`):
+/// a block's mean keeps half of the lines (a block spans two of the lattice's rows) and a
+/// quarter of the white noise, so the block model gives the camera term half the weight the
+/// per-pixel model does, and with it the budgets move towards forward rays: fewer camera paths
+/// or more rays, never the other way.
+#[test]
+fn blocks_see_the_forward_rays_lines_and_pull_the_budgets_to_them() {
+    let mut t = auto_tuner_256();
+    feed_structured(&mut t, (2.0e-4, 4.0e-4, 2.0e-4));
+    let (_, base) = t.measure(Role::Base).expect("measured");
+    let (pixel, block) = t.noise_splits(&base).expect("resolved");
+    let block = block.expect("the blocks resolve both budgets");
+    let ratio = |s: &model::NoiseSplit| s.camera / s.forward;
+    // Expected: 2e-4 / (4e-4 x 12 500) per pixel, half of it per block; the estimates carry
+    // the lines' noise (128 of them), about 12 % each.
+    assert!(ratio(&block) < 0.75 * ratio(&pixel), "{pixel:?} {block:?}");
+    let cost = model::CostSplit {
+        per_sample: 1.0,
+        per_ray: 2e-5,
+        per_pair: 2e-6,
+    };
+    let search = model::BudgetSearch {
+        samples: None,
+        max_samples: 16,
+        rays: None,
+        rays_range: (10_000, 200_000),
+    };
+    let (s1, n1) = model::budgets(&[pixel], &cost, &search);
+    let (s2, n2) = model::budgets(&[pixel, block], &cost, &search);
+    assert!(
+        s1 > 1 && n1 < 198_896,
+        "interior per-pixel optimum: {s1} {n1}"
+    );
+    assert!(
+        s2 <= s1 && n2 >= n1 && (s2, n2) != (s1, n1),
+        "{s1} {n1} -> {s2} {n2}"
+    );
+}

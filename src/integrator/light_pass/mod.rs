@@ -50,6 +50,8 @@ pub struct LightJob<'a> {
     /// Counts the gather candidates the pass's forward rays met (work, for automatic
     /// settings; a sum, so the same whatever the thread count).
     pub hits: AtomicU64,
+    /// Counts the forward segments traced (work, like `hits`).
+    pub segments: AtomicU64,
     /// The sensors' records and discs (the first tile of a pass with illuminance sensors).
     pub sensors: Option<&'a SensorGather>,
 }
@@ -110,6 +112,7 @@ pub fn light_pass(
                         splat_norm: (integrator.splat_to_camera && job.tile == 0)
                             .then(|| 1.0 / total as f32),
                         hits: 0,
+                        segments: 0,
                         to_discs: false,
                     };
                     for i in 0..chunk.min(total - c * chunk) {
@@ -123,6 +126,7 @@ pub fn light_pass(
                         tracer.trace(&mut rng);
                     }
                     job.hits.fetch_add(tracer.hits, Ordering::Relaxed);
+                    job.segments.fetch_add(tracer.segments, Ordering::Relaxed);
                     shared.finish(c, sink);
                 }
             });
@@ -165,6 +169,8 @@ struct ForwardTracer<'a> {
     splat_norm: Option<f32>,
     /// Gather candidates met (surface spheres and volumes passed to their test).
     hits: u64,
+    /// Segments traced (`PathStep::medium` and `vacuum` calls, one geometry intersection each).
+    segments: u64,
     /// Whether the ray is on its first flight from a light whose direct light the sensors'
     /// discs gather (`SensorGather::disc_gathers`).
     to_discs: bool,
@@ -308,6 +314,7 @@ impl PathStep for ForwardTracer<'_> {
         (len, _): (f32, Option<&Hit>),
         rng: &mut Rng,
     ) -> MediumStep {
+        self.segments += 1;
         let med = &self.scene.media[m as usize];
         let floor = self.integrator.settings.channel_floor;
         // The flight runs in optical depth at density 1 (the distance in a uniform medium) and
@@ -386,6 +393,7 @@ impl PathStep for ForwardTracer<'_> {
     }
 
     fn vacuum(&mut self, ray: &Ray, hit: Option<&Hit>) {
+        self.segments += 1;
         let len = || hit.map_or_else(|| self.scene.world_exit(ray), |h| h.t);
         if self.scene.open_media && self.deposits {
             // Integration volumes poking out of index-matched boundaries still see the forward

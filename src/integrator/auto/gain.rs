@@ -1,0 +1,52 @@
+//! How much one pilot configuration lowered the variance below another's, and whether the
+//! pilots resolve it.
+
+/// How many standard errors a difference between two pilots' variances must reach to be
+/// acted on: below it the pilots cannot tell the settings apart, and the base values stay
+/// (rare bright samples, as of a laser seen through fog, make the variance itself noisy).
+pub const Z_SIGNIFICANT: f64 = 2.0;
+
+/// The gain of one pilot over another: the difference of their variances per pass, with its
+/// standard error, from their per-pixel estimates `d = (x1 - x2)^2 / 2` taken pixel by pixel.
+///
+/// Pilots outside the film draw the same random numbers in every configuration
+/// (`Tuner::random_pass`): the forward rays of the Base pair are, ray for ray, those of the
+/// Medium pair (and the first of the Rays pair's). Their noise, most of a pilot's variance at
+/// the base budgets, then cancels in the per-pixel difference, and the standard error is that
+/// of the difference alone. Compared as two independent variances instead (the sum of their
+/// standard errors in quadrature), height-fog's Base and Medium pilots, 12 500 forward rays
+/// each, could not resolve q = 0.25's gain on 2 seeds of 16, which then kept q = 1 and passes
+/// of 30 % more error (docs/performance.md, "The automatic choice on height-fog").
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Gain {
+    pub(super) gain: f64,
+    pub(super) se: f64,
+}
+
+impl Gain {
+    /// The gain of `after` over `before` (per-pixel `d` on the same pixels, each already scaled
+    /// to the whole image: `Tuner::record`). The standard error is estimated by the sum of the
+    /// squared per-pixel differences: pixels are taken as independent, as in `Measure::se`, and
+    /// the estimate errs high by the sum of the squared per-pixel mean gains.
+    pub(super) fn paired(before: &[f64], after: &[f64]) -> Self {
+        let (mut gain, mut sq) = (0.0, 0.0);
+        for (b, a) in before.iter().zip(after) {
+            let e = b - a;
+            gain += e;
+            sq += e * e;
+        }
+        Gain {
+            gain,
+            se: sq.sqrt(),
+        }
+    }
+
+    /// The gain if it exceeds `Z_SIGNIFICANT` standard errors, else 0.
+    pub(super) fn significant(&self) -> f64 {
+        if self.gain > Z_SIGNIFICANT * self.se {
+            self.gain
+        } else {
+            0.0
+        }
+    }
+}
