@@ -108,12 +108,11 @@ impl Tuner {
     pub(super) fn noise_splits(&self, b: &Measure) -> Option<(NoiseSplit, Option<NoiseSplit>)> {
         let base = &self.pilots.first()?.1;
         let (s, n) = (base.camera_samples as f64, base.forward_rays as f64);
-        let significant = |g: Option<Gain>| g.map(|g| g.significant()).filter(|g| *g > 0.0);
         let roles = [Role::Rays, Role::Samples];
-        let gains = roles.map(|r| significant(self.gain(r)));
+        let gains = roles.map(|r| self.gain(r).and_then(Gain::resolved));
         let split = Self::split(s, n, b.variance, gains)?;
         let block_split = self.block_variance().and_then(|v| {
-            let mut blocks = roles.map(|r| significant(self.block_gain(r)));
+            let mut blocks = roles.map(|r| self.block_gain(r).and_then(Gain::resolved));
             for (g, p) in blocks.iter_mut().zip(&gains) {
                 *g = g.filter(|_| p.is_some());
             }
@@ -140,7 +139,7 @@ impl Tuner {
         let Some((split, block_split)) = self.noise_splits(&b) else {
             return self.cheapest(config, report);
         };
-        let resolved = |r| self.gain(r).is_some_and(|g| g.significant() > 0.0);
+        let resolved = |r| self.gain(r).and_then(Gain::resolved).is_some();
         let (rays_gain, samples_gain) = (resolved(Role::Rays), resolved(Role::Samples));
         let noise = split.scaled(scale);
         // The base pass's cost parts, rescaled to the chosen q's cost.

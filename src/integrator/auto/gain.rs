@@ -41,6 +41,12 @@ impl Gain {
         }
     }
 
+    /// The gain when it is significant and positive: what the choice may act on.
+    pub(super) fn resolved(self) -> Option<f64> {
+        let g = self.significant();
+        (g > 0.0).then_some(g)
+    }
+
     /// The gain if it exceeds `Z_SIGNIFICANT` standard errors, else 0.
     pub(super) fn significant(&self) -> f64 {
         if self.gain > Z_SIGNIFICANT * self.se {
