@@ -8,6 +8,27 @@ use super::{
     Z_SIGNIFICANT,
 };
 
+/// An unresolved term of `NoiseSplit::from_four` (under `Z_SIGNIFICANT` standard errors)
+/// counts as 0 when the pilots bound it, its `Z_SIGNIFICANT` standard errors under
+/// `BOUND_SHARE` of the resolved terms' sum; one they neither resolve nor bound keeps its
+/// estimate. Height-fog's camera term, 3.1e-3 +- 1.9e-3 beside resolved terms of 5.4e-2 on
+/// seed 6, is bounded, and with it taken as 0 every seed tried chooses the most forward rays
+/// (the fixed budgets' best); with its estimate kept, 5 seeds of 11 chose 46 000-160 000.
+/// Fog-room-laser's, 2.3e4 +- 4.3e4 beside 2.4e5 (seed 2; its variance is rare bright
+/// samples), is not: taken as 0 it sent the rays to the top of the range, where the cheapest
+/// passes are the most efficient (docs/study.md).
+const BOUND_SHARE: f64 = 0.25;
+
+/// The terms of `NoiseSplit::from_four` as the choice takes them (`BOUND_SHARE`).
+pub(super) fn bounded(terms: [Gain; 3]) -> [f64; 3] {
+    let resolved: f64 = terms.iter().filter_map(|g| g.resolved()).sum();
+    terms.map(|g| match g.resolved() {
+        Some(v) => v,
+        None if Z_SIGNIFICANT * g.se < BOUND_SHARE * resolved => 0.0,
+        None => g.gain.max(0.0),
+    })
+}
+
 impl Tuner {
     /// Sets the automatic media's q; returns the predicted variance and cost of a pass.
     pub(super) fn choose_q(
@@ -88,15 +109,26 @@ impl Tuner {
     }
 
     /// The noise model `a/s + b/N + c/(sN)` at the pilots' budgets `(s, n)` from the Base
-    /// pilot's variance `v` and the Rays and Samples pilots' gains over it (None: not
-    /// significant); None when neither gain is.
-    fn split(s: f64, n: f64, v: f64, gains: [Option<f64>; 2]) -> Option<NoiseSplit> {
+    /// pilot's variance `v`, the Rays and Samples pilots' gains over it (None: not significant)
+    /// and, with the Both pilot, the terms measured from the four pilots' paired differences
+    /// (`NoiseSplit::from_four`; a term the pilots do not resolve counts as 0, as a gain does);
+    /// None when neither gain is significant.
+    fn split(
+        s: f64,
+        n: f64,
+        v: f64,
+        gains: [Option<f64>; 2],
+        terms: Option<[Gain; 3]>,
+    ) -> Option<NoiseSplit> {
         let k = BUDGET_FACTOR as f64;
-        match gains {
-            [Some(gr), Some(gs)] => Some(NoiseSplit::from_three(s, n, k, v, v - gr, v - gs)),
-            [Some(gr), None] => Some(NoiseSplit::from_forward_rays(s, n, v, k, v - gr)),
-            [None, Some(gs)] => Some(NoiseSplit::from_camera_samples(s, n, v, k, v - gs)),
-            [None, None] => None,
+        match (gains, terms) {
+            ([Some(_), Some(_)], Some(t)) => Some(NoiseSplit::from_four(s, n, k, bounded(t))),
+            ([Some(gr), Some(gs)], None) => {
+                Some(NoiseSplit::from_three(s, n, k, v, v - gr, v - gs))
+            }
+            ([Some(gr), None], _) => Some(NoiseSplit::from_forward_rays(s, n, v, k, v - gr)),
+            ([None, Some(gs)], _) => Some(NoiseSplit::from_camera_samples(s, n, v, k, v - gs)),
+            ([None, None], _) => None,
         }
     }
 
@@ -110,13 +142,15 @@ impl Tuner {
         let (s, n) = (base.camera_samples as f64, base.forward_rays as f64);
         let roles = [Role::Rays, Role::Samples];
         let gains = roles.map(|r| self.gain(r).and_then(Gain::resolved));
-        let split = Self::split(s, n, b.variance, gains)?;
+        let terms = self.four_terms_in(&self.shares);
+        let split = Self::split(s, n, b.variance, gains, terms)?;
         let block_split = self.block_variance().and_then(|v| {
             let mut blocks = roles.map(|r| self.block_gain(r).and_then(Gain::resolved));
             for (g, p) in blocks.iter_mut().zip(&gains) {
                 *g = g.filter(|_| p.is_some());
             }
-            Self::split(s, n, v, blocks)
+            let terms = self.four_terms_in(&self.block_shares);
+            Self::split(s, n, v, blocks, terms)
         });
         Some((split, block_split))
     }
@@ -169,6 +203,14 @@ impl Tuner {
         };
         let noises: Vec<NoiseSplit> = std::iter::once(noise).chain(block_split).collect();
         (config.camera_samples, config.forward_rays) = model::budgets(&noises, &costs, &search);
+        if let Some([a, f, p]) = self.four_terms_in(&self.shares) {
+            report.push(format!(
+                "budgets, the four pilots' terms at their budgets (acted on beyond \
+                 {Z_SIGNIFICANT} standard errors): camera {:.3e} +- {:.1e}, forward rays \
+                 {:.3e} +- {:.1e}, pair {:.3e} +- {:.1e}",
+                a.gain, a.se, f.gain, f.se, p.gain, p.se
+            ));
+        }
         if let Some(bs) = block_split {
             report.push(format!(
                 "budgets, blocks of {k} x {k} pilot points: variance per pass = {:.4e}/paths + \

@@ -29,9 +29,16 @@ impl Gain {
     /// squared per-pixel differences: pixels are taken as independent, as in `Measure::se`, and
     /// the estimate errs high by the sum of the squared per-pixel mean gains.
     pub(super) fn paired(before: &[f64], after: &[f64]) -> Self {
+        Self::combined(&[(before, 1.0), (after, -1.0)])
+    }
+
+    /// The sum over pixels of `sum_i w_i d_i` for pilots' per-pixel `d_i` and weights `w_i`,
+    /// with its standard error taken as `paired`'s (pixel by pixel, pixels independent).
+    pub(super) fn combined(terms: &[(&[f64], f64)]) -> Self {
+        let pixels = terms.iter().map(|(d, _)| d.len()).min().unwrap_or(0);
         let (mut gain, mut sq) = (0.0, 0.0);
-        for (b, a) in before.iter().zip(after) {
-            let e = b - a;
+        for p in 0..pixels {
+            let e: f64 = terms.iter().map(|(d, w)| w * d[p]).sum();
             gain += e;
             sq += e * e;
         }

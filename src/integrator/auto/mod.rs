@@ -3,8 +3,8 @@
 //!
 //! The first passes of the seed's sequence, in a render with an automatic setting, are pilot
 //! passes: pairs of passes at a few configurations (every q = 1 and the scene's budgets; each
-//! automatic medium alone at q = [`Q_PILOT`]; the forward rays, or camera paths, times
-//! [`BUDGET_FACTOR`]). A pair gives an unbiased estimate of the image's variance per pass,
+//! automatic medium alone at q = [`Q_PILOT`]; the forward rays, the camera paths, and both,
+//! times [`BUDGET_FACTOR`]). A pair gives an unbiased estimate of the image's variance per pass,
 //! `sum over pixels of (x1 - x2)^2 / 2`, and the passes' work counters give their cost; the
 //! models of [`model`] turn these into the chosen configuration, which every film pass uses.
 //! With automatic budgets the pilots do not join the film (`Renderer::render_pass_until`): at
@@ -101,6 +101,9 @@ enum Role {
     Rays,
     /// Camera paths per pixel times `BUDGET_FACTOR`.
     Samples,
+    /// Both budgets times `BUDGET_FACTOR` (with both automatic): with Rays and Samples it
+    /// splits the noise from the pilots' paired gains alone (`NoiseSplit::from_four`).
+    Both,
 }
 
 /// Variance (with its standard error) and cost of a pilot configuration.
@@ -181,9 +184,15 @@ impl Tuner {
             pilots.push((Role::Rays, c));
         }
         if auto_samples {
-            let mut c = pilot;
+            let mut c = pilot.clone();
             c.camera_samples *= BUDGET_FACTOR as u32;
             pilots.push((Role::Samples, c));
+        }
+        if auto_rays && auto_samples {
+            let mut c = pilot;
+            c.forward_rays *= BUDGET_FACTOR;
+            c.camera_samples *= BUDGET_FACTOR as u32;
+            pilots.push((Role::Both, c));
         }
         Some(Self {
             base,
@@ -365,15 +374,39 @@ impl Tuner {
     }
 
     fn gain_in(&self, shares: &[Vec<f64>], role: Role) -> Option<Gain> {
-        let at = |r: Role| self.pilots.iter().position(|(p, _)| *p == r);
-        let (b, i) = (at(Role::Base)?, at(role)?);
-        let (base, other) = (shares.get(b)?, shares.get(i)?);
+        let (base, other) = (
+            self.shares_of(shares, Role::Base)?,
+            self.shares_of(shares, role)?,
+        );
         // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
         // missed twice) measured nothing, not a variance of zero.
         if other.iter().all(|d| *d == 0.0) {
             return Some(Gain { gain: 0.0, se: 0.0 });
         }
         Some(Gain::paired(base, other))
+    }
+
+    /// Pilot `role`'s per-pixel (or per-block) shares among `shares`.
+    fn shares_of<'a>(&self, shares: &'a [Vec<f64>], role: Role) -> Option<&'a [f64]> {
+        let i = self.pilots.iter().position(|(p, _)| *p == role)?;
+        shares.get(i).map(Vec::as_slice)
+    }
+
+    /// The terms of `NoiseSplit::from_four` (camera, forward, pair), each a sum over pixels (or
+    /// blocks) of `shares` with its standard error; None without the Both pilot.
+    fn four_terms_in(&self, shares: &[Vec<f64>]) -> Option<[Gain; 3]> {
+        let of = |r| self.shares_of(shares, r);
+        let d = [
+            of(Role::Base)?,
+            of(Role::Rays)?,
+            of(Role::Samples)?,
+            of(Role::Both)?,
+        ];
+        let weights = model::four_terms(BUDGET_FACTOR as f64);
+        Some(weights.map(|w| {
+            let terms: Vec<(&[f64], f64)> = d.iter().copied().zip(w).collect();
+            Gain::combined(&terms)
+        }))
     }
 
     /// The pass of the seed's sequence whose random numbers pass `pass` draws (film passes

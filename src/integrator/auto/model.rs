@@ -91,6 +91,17 @@ pub fn q_joint(fits: &[QFit], base_variance: f64, base_cost: f64) -> Vec<f32> {
     q.into_iter().map(|q| q as f32).collect()
 }
 
+/// The weights of the variances of the (s, n), (s, k n), (k s, n) and (k s, k n) passes in
+/// each of `NoiseSplit::from_four`'s terms (camera, forward, pair), for `k` =
+/// `BUDGET_FACTOR`.
+pub fn four_terms(k: f64) -> [[f64; 4]; 3] {
+    [
+        [-1.0 / k, 1.0, 1.0 / k, -1.0],
+        [-1.0 / k, 1.0 / k, 1.0, -1.0],
+        [1.0, -1.0, -1.0, 1.0],
+    ]
+}
+
 /// Variance `a / s + b / N + c / (s N)` of a pass: noise of the camera paths alone, of the
 /// forward rays alone (shared by every camera path of a pixel), and of their meeting (each
 /// camera path's volumes see their own forward-ray hits).
@@ -114,6 +125,23 @@ impl NoiseSplit {
             camera: (y - pair / n).max(0.0),
             forward: (x - pair / s).max(0.0),
             pair,
+        }
+    }
+
+    /// From passes at (s, n), (s, k n), (k s, n) and (k s, k n) of variances `V0`, `Vr`, `Vs`
+    /// and `Vb` that draw the same random numbers (`Tuner::random_pass`), given as each term's
+    /// combination of them at (s, n), with `e = 1 - 1/k`:
+    /// `e^2 a/s = Vr - Vb - (V0 - Vs)/k`, `e^2 b/n = Vs - Vb - (V0 - Vr)/k` and
+    /// `e^2 c/(sn) = V0 - Vr - Vs + Vb` (`four_terms`). No term needs a variance on its own: at
+    /// the pilots' budgets the base pass's variance is mostly the forward rays' noise, and
+    /// `from_three`'s camera term, `s (v - X / n)`, is the small difference of two large noisy
+    /// numbers; each combination here is of paired differences, whose shared noise cancels.
+    pub fn from_four(s: f64, n: f64, k: f64, [camera, forward, pair]: [f64; 3]) -> Self {
+        let e2 = (1.0 - 1.0 / k).powi(2);
+        Self {
+            camera: (camera * s / e2).max(0.0),
+            forward: (forward * n / e2).max(0.0),
+            pair: (pair * s * n / e2).max(0.0),
         }
     }
 
@@ -377,6 +405,19 @@ mod tests {
             (back.pair, noise.pair),
         ] {
             assert!((got / want - 1.0).abs() < 1e-9, "{back:?}");
+        }
+        // The four-pass split from the gains alone, (s, k n), (k s, n) and (k s, k n) over
+        // (s, n).
+        let vs = [v, noise.variance(s0, k * n0), noise.variance(k * s0, n0)];
+        let vs = [vs[0], vs[1], vs[2], noise.variance(k * s0, k * n0)];
+        let terms = four_terms(k).map(|w| w.iter().zip(&vs).map(|(w, v)| w * v).sum());
+        let four = NoiseSplit::from_four(s0, n0, k, terms);
+        for (got, want) in [
+            (four.camera, noise.camera),
+            (four.forward, noise.forward),
+            (four.pair, noise.pair),
+        ] {
+            assert!((got / want - 1.0).abs() < 1e-9, "{four:?}");
         }
         // With one budget fixed, the two-pass fits predict the variance along the other.
         let rays = NoiseSplit::from_forward_rays(s0, n0, v, k, noise.variance(s0, k * n0));

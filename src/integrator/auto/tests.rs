@@ -119,8 +119,8 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
     feed(&mut t, |_| 1.0);
     let first = &t.choice().expect("chosen").report[0];
     assert!(
-        first.contains("6 pilot passes rendered before the film's first pass and NOT in the film")
-            && first.contains("a render of N passes traces N + 6"),
+        first.contains("8 pilot passes rendered before the film's first pass and NOT in the film")
+            && first.contains("a render of N passes traces N + 8"),
         "{first}"
     );
     let mut t = q_tuner();
@@ -187,7 +187,7 @@ fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
 fn pilots_outside_the_film_share_their_random_numbers() {
     let t = tuner(IntegratorDesc::default());
     let p = t.pilot_passes();
-    assert_eq!(p, 8);
+    assert_eq!(p, 10);
     for pass in 0..p {
         assert_eq!(t.random_pass(pass), pass % REPEATS, "pilot pass {pass}");
     }
@@ -344,4 +344,63 @@ fn blocks_see_the_forward_rays_lines_and_pull_the_budgets_to_them() {
         s2 <= s1 && n2 >= n1 && (s2, n2) != (s1, n1),
         "{s1} {n1} -> {s2} {n2}"
     );
+}
+
+/// The fourth pilot (both budgets times `BUDGET_FACTOR`) splits the noise from the pilots'
+/// paired differences alone (`NoiseSplit::from_four`). With brume's structure and the forward
+/// rays' lines 40 times the camera paths' white noise, the Base pilot's variance is known to
+/// about 12 % (128 lines on the lattice), and `from_three`'s camera term, `s (v - X / n)`,
+/// inherits that error times 40 (here it is clipped to 0). The four pilots' combinations cancel
+/// the lines: each term must come back within 4 of its standard errors, the camera term
+/// resolved (over 4 standard errors).
+#[test]
+fn the_fourth_pilot_splits_the_noise_without_the_lines_noise() {
+    let (a, b, c) = (1.0e-4, 4.0e-3, 1.0e-4);
+    let mut t = auto_tuner_256();
+    feed_structured(&mut t, (a, b, c));
+    // The truth at the Base pilot's budgets (1 camera path, 12 500 rays), summed over the
+    // whole image (the lattice's sums times 4), times e^2.
+    let whole = (256 * 256) as f64;
+    let e2 = (1.0 - 1.0 / BUDGET_FACTOR as f64).powi(2);
+    let truth = [a, b, c].map(|x| x * whole * e2);
+    let terms = t.four_terms_in(&t.shares).expect("four pilots");
+    // The camera and pair terms are white noise, whose standard error `Gain` states; the
+    // forward term is 128 lines' variance, known to sqrt(2 / 128) = 12.5 % (`Gain` takes
+    // pixels as independent and states less): within 4 of either.
+    for i in [0, 2] {
+        let g = terms[i];
+        assert!(
+            (g.gain - truth[i]).abs() < 4.0 * g.se,
+            "{terms:?} against {truth:?}"
+        );
+    }
+    assert!(
+        (terms[1].gain / truth[1] - 1.0).abs() < 0.5,
+        "{terms:?} against {truth:?}"
+    );
+    assert!(terms[0].gain > 4.0 * terms[0].se, "{terms:?}");
+    let (_, base) = t.measure(Role::Base).expect("measured");
+    let (pixel, _) = t.noise_splits(&base).expect("resolved");
+    let s = t.config(0).expect("base").camera_samples as f64;
+    assert!(
+        (pixel.camera / s * e2 - terms[0].gain).abs() < 1e-9 * truth[0],
+        "{pixel:?}"
+    );
+}
+
+/// An unresolved term counts as 0 only where the pilots bound it (`choose::BOUND_SHARE`): the
+/// two cases that set the rule, height-fog's seed 6 and fog-room-laser's seed 2.
+#[test]
+fn an_unresolved_term_is_zero_only_where_the_pilots_bound_it() {
+    let g = |gain, se| Gain { gain, se };
+    let height_fog = [
+        g(3.116e-3, 1.9e-3),
+        g(2.529e-2, 3.2e-3),
+        g(2.925e-2, 6.4e-3),
+    ];
+    assert_eq!(choose::bounded(height_fog), [0.0, 2.529e-2, 2.925e-2]);
+    let laser = [g(2.281e4, 4.3e4), g(1.050e5, 1.6e4), g(1.382e5, 3.5e4)];
+    assert_eq!(choose::bounded(laser), [2.281e4, 1.050e5, 1.382e5]);
+    let negative = [g(-7.5e3, 4.3e4), g(1.050e5, 1.6e4), g(1.382e5, 3.5e4)];
+    assert_eq!(choose::bounded(negative)[0], 0.0);
 }
