@@ -111,7 +111,8 @@ impl Tuner {
     /// The noise model `a/s + b/N + c/(sN)` at the pilots' budgets `(s, n)` from the Base
     /// pilot's variance `v`, the Rays and Samples pilots' gains over it (None: not significant)
     /// and, with the Both pilot, the terms measured from the four pilots' paired differences
-    /// (`NoiseSplit::from_four`; a term the pilots do not resolve counts as 0, as a gain does);
+    /// (`NoiseSplit::from_four`, its terms as `bounded` takes them; the three-pilot arm is
+    /// reached only without them, which the tuner never leaves when both gains resolve);
     /// None when neither gain is significant.
     fn split(
         s: f64,
