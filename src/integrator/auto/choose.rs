@@ -110,10 +110,10 @@ impl Tuner {
 
     /// The noise model `a/s + b/N + c/(sN)` at the pilots' budgets `(s, n)` from the Base
     /// pilot's variance `v`, the Rays and Samples pilots' gains over it (None: not significant)
-    /// and, with the Both pilot, the terms measured from the four pilots' paired differences
-    /// (`NoiseSplit::from_four`, its terms as `bounded` takes them; the three-pilot arm is
-    /// reached only without them, which the tuner never leaves when both gains resolve);
-    /// None when neither gain is significant.
+    /// and the terms measured from the four pilots' paired differences (`NoiseSplit::from_four`,
+    /// its terms as `bounded` takes them), which exist whenever both gains do: the Both pilot
+    /// is rendered whenever both budgets are automatic, and only an automatic budget has a
+    /// gain. None when neither gain is significant.
     fn split(
         s: f64,
         n: f64,
@@ -122,14 +122,11 @@ impl Tuner {
         terms: Option<[Gain; 3]>,
     ) -> Option<NoiseSplit> {
         let k = BUDGET_FACTOR as f64;
-        match (gains, terms) {
-            ([Some(_), Some(_)], Some(t)) => Some(NoiseSplit::from_four(s, n, k, bounded(t))),
-            ([Some(gr), Some(gs)], None) => {
-                Some(NoiseSplit::from_three(s, n, k, v, v - gr, v - gs))
-            }
-            ([Some(gr), None], _) => Some(NoiseSplit::from_forward_rays(s, n, v, k, v - gr)),
-            ([None, Some(gs)], _) => Some(NoiseSplit::from_camera_samples(s, n, v, k, v - gs)),
-            ([None, None], _) => None,
+        match gains {
+            [Some(_), Some(_)] => terms.map(|t| NoiseSplit::from_four(s, n, k, bounded(t))),
+            [Some(gr), None] => Some(NoiseSplit::from_forward_rays(s, n, v, k, v - gr)),
+            [None, Some(gs)] => Some(NoiseSplit::from_camera_samples(s, n, v, k, v - gs)),
+            [None, None] => None,
         }
     }
 

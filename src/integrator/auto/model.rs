@@ -113,29 +113,15 @@ pub struct NoiseSplit {
 }
 
 impl NoiseSplit {
-    /// From passes at (s, n), (s, k n) and (k s, n) of variances `v`, `v_rays` and
-    /// `v_samples`. With `X = (v - v_rays) n k / (k - 1) = b + c / s` and
-    /// `Y = (v - v_samples) s k / (k - 1) = a + c / n`, the model at (s, n) gives
-    /// `c = Y n + X s - v s n`.
-    pub fn from_three(s: f64, n: f64, k: f64, v: f64, v_rays: f64, v_samples: f64) -> Self {
-        let x = (v - v_rays) * n * k / (k - 1.0);
-        let y = (v - v_samples) * s * k / (k - 1.0);
-        let pair = (y * n + x * s - v * s * n).max(0.0);
-        Self {
-            camera: (y - pair / n).max(0.0),
-            forward: (x - pair / s).max(0.0),
-            pair,
-        }
-    }
-
     /// From passes at (s, n), (s, k n), (k s, n) and (k s, k n) of variances `V0`, `Vr`, `Vs`
     /// and `Vb` that draw the same random numbers (`Tuner::random_pass`), given as each term's
     /// combination of them at (s, n), with `e = 1 - 1/k`:
     /// `e^2 a/s = Vr - Vb - (V0 - Vs)/k`, `e^2 b/n = Vs - Vb - (V0 - Vr)/k` and
     /// `e^2 c/(sn) = V0 - Vr - Vs + Vb` (`four_terms`). No term needs a variance on its own: at
-    /// the pilots' budgets the base pass's variance is mostly the forward rays' noise, and
-    /// `from_three`'s camera term, `s (v - X / n)`, is the small difference of two large noisy
-    /// numbers; each combination here is of paired differences, whose shared noise cancels.
+    /// the pilots' budgets the base pass's variance is mostly the forward rays' noise, and a
+    /// camera term taken as what is left of it, `s (v - X / n)` (the three-pilot split this
+    /// replaced), was the small difference of two large noisy numbers; each combination here
+    /// is of paired differences, whose shared noise cancels.
     pub fn from_four(s: f64, n: f64, k: f64, [camera, forward, pair]: [f64; 3]) -> Self {
         let e2 = (1.0 - 1.0 / k).powi(2);
         Self {
@@ -391,21 +377,6 @@ mod tests {
         }
         let (s0, n0, k) = (4.0, 5e4, 4.0);
         let v = noise.variance(s0, n0);
-        let back = NoiseSplit::from_three(
-            s0,
-            n0,
-            k,
-            v,
-            noise.variance(s0, k * n0),
-            noise.variance(k * s0, n0),
-        );
-        for (got, want) in [
-            (back.camera, noise.camera),
-            (back.forward, noise.forward),
-            (back.pair, noise.pair),
-        ] {
-            assert!((got / want - 1.0).abs() < 1e-9, "{back:?}");
-        }
         // The four-pass split from the gains alone, (s, k n), (k s, n) and (k s, k n) over
         // (s, n).
         let vs = [v, noise.variance(s0, k * n0), noise.variance(k * s0, n0)];

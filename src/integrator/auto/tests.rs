@@ -349,8 +349,8 @@ fn blocks_see_the_forward_rays_lines_and_pull_the_budgets_to_them() {
 /// The fourth pilot (both budgets times `BUDGET_FACTOR`) splits the noise from the pilots'
 /// paired differences alone (`NoiseSplit::from_four`). With brume's structure and the forward
 /// rays' lines 40 times the camera paths' white noise, the Base pilot's variance is known to
-/// about 12 % (128 lines on the lattice), and `from_three`'s camera term, `s (v - X / n)`,
-/// inherits that error times 40 (here it is clipped to 0). The four pilots' combinations cancel
+/// about 12 % (128 lines on the lattice), and the three-pilot split this replaced, whose
+/// camera term was `s (v - X / n)`, inherited that error times 40 (here it clipped it to 0). The four pilots' combinations cancel
 /// the lines: each term must come back within 4 of its standard errors, the camera term
 /// resolved (over 4 standard errors).
 #[test]
