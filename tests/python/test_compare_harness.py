@@ -286,3 +286,34 @@ def test_protocol_density_scenes_map_to_one_mitsuba_render():
     chromatic = scenes / "height-fog-chromatic.toml"
     with pytest.raises(NotImplementedError, match="chromatic medium with a density"):
         protocol_scene.check_mappable(protocol_scene.edited_desc(chromatic, []), chromatic.parent)
+
+
+def test_protocol_growth_interval_covers_no_growth_and_excludes_growth():
+    """The ratio's change from 10 to 60 s (tools/compare/protocol_growth.py), on runs drawn with
+    a known truth: errors falling as t^-1/2 for both renderers, each run's error spread 5 %
+    (lognormal), as the protocol's runs spread. With no growth, the 90 % interval must hold 1 and
+    the estimate be within 10 % of it; with brume's error at 60 s 1.3x what t^-1/2 predicts (a
+    floor), over 20 runs a budget, the interval must lie above 1.15. Fixed seeds."""
+    import protocol_growth
+
+    rng = np.random.default_rng(7)
+
+    def rows(runs, floor):
+        out = []
+        for who, e10 in (("brume", 0.01), ("mitsuba", 0.02)):
+            for t in (10.0, 60.0):
+                e = e10 * np.sqrt(10.0 / t) * (floor if (who == "brume" and t == 60.0) else 1.0)
+                for x in e * rng.lognormal(0.0, 0.05, runs):
+                    out.append({"renderer": who, "budget_s": t, "rel_rmse_nominal": x, "rel_rmse_bin4_nominal": x / 2})
+        return out
+
+    flat = protocol_growth.growth(rows(5, 1.0), [10.0, 60.0])
+    for k in ("rel_rmse_nominal", "rel_rmse_bin4_nominal"):
+        g = flat[k]
+        assert g["lo90"] <= 1.0 <= g["hi90"], g
+        assert abs(g["growth"] - 1.0) < 0.1, g
+        assert abs(g["brume_falls"] / np.sqrt(6.0) - 1.0) < 0.1, g
+    grown = protocol_growth.growth(rows(20, 1.3), [10.0, 60.0])
+    assert grown["rel_rmse_nominal"]["lo90"] > 1.15, grown
+    assert protocol_growth.growth_line(grown).startswith("The ratio from 10 to 60 s")
+    assert protocol_growth.growth(rows(5, 1.0), [10.0]) == {}

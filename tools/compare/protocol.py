@@ -96,6 +96,7 @@ from compare import bin4, read_rgb, write_rgb  # noqa: E402
 from protocol_render import (  # noqa: E402
     B_REF, M_REF, M_RUN, Peer, brume_fixed_cost, brume_render, chunk_ok, file_sha, machine_state, nonfinite, pilot,
 )
+from protocol_growth import growth, growth_line  # noqa: E402
 from protocol_scene import check_mappable, edited_desc, spectral_media, strip_integrator  # noqa: E402
 
 LLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
@@ -366,11 +367,12 @@ def labels(a, s: Setup, ps: dict) -> tuple[str, str, str]:
 
 def report(a, s: Setup, ps: dict, ref: dict, pilot_rec: dict, fixed: dict | None, rows: list[dict]) -> None:
     summary = summarise(rows, a.times)
+    change = growth(rows, a.times)
     scene, brume, peer = labels(a, s, ps)
     doc = {
         "command": sys.argv, "scene": str(a.scene), "sets": a.set, "brume": s.brume_info, "mitsuba": {**ps, "sampler": s.peer.sampler},
         "pilot": pilot_rec, "reference": {k: v for k, v in ref.items() if k not in ("mean",)},
-        "brume_fixed_cost": fixed, "runs": rows, "summary": summary,
+        "brume_fixed_cost": fixed, "runs": rows, "summary": summary, "growth": change,
         "notes": ["brume's wall time is its whole process (start-up, scene load, automatic pilots); Mitsuba's "
                   "excludes scene load and JIT (one untimed warm-up): brume is charged more",
                   "*_nominal = RMSE * sqrt(t_actual / T): the error at exactly the nominal budget (error ~ t^-1/2); "
@@ -380,6 +382,8 @@ def report(a, s: Setup, ps: dict, ref: dict, pilot_rec: dict, fixed: dict | None
     a.out.parent.mkdir(parents=True, exist_ok=True)
     a.out.with_name(a.out.name + ".json").write_text(json.dumps(doc, indent=2, default=float))
     md = markdown(scene, brume, peer, summary)
+    if change:
+        md += "\n" + growth_line(change)
     a.out.with_name(a.out.name + ".md").write_text(md)
     print_summary(a, ref, fixed, summary, md)
 
