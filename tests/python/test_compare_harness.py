@@ -317,3 +317,15 @@ def test_protocol_growth_interval_covers_no_growth_and_excludes_growth():
     assert grown["rel_rmse_nominal"]["lo90"] > 1.15, grown
     assert protocol_growth.growth_line(grown).startswith("The ratio from 10 to 60 s")
     assert protocol_growth.growth(rows(5, 1.0), [10.0]) == {}
+
+
+def test_protocol_records_the_hosts_simd_level():
+    """The protocol's JSON names its host's CPU and widest SIMD level (a ratio against Mitsuba's
+    LLVM kernels holds for its host only): /proc/cpuinfo's text parsed, AVX-512 above AVX2."""
+    import protocol_render
+
+    avx512 = "processor\t: 0\nmodel name\t: Intel(R) Xeon(R) Gold\nflags\t\t: fpu sse4_2 avx avx2 avx512f avx512vl\n"
+    avx2 = "processor\t: 0\nmodel name\t: AMD EPYC\nflags\t\t: fpu sse4_2 avx avx2 fma\n"
+    assert protocol_render.cpu_of(avx512) == {"model": "Intel(R) Xeon(R) Gold", "simd": "avx512"}
+    assert protocol_render.cpu_of(avx2) == {"model": "AMD EPYC", "simd": "avx2"}
+    assert protocol_render.cpu_of("processor\t: 0\n") == {"model": None, "simd": None}

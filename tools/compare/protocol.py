@@ -66,11 +66,14 @@ favoured brume in several ways at once):
   scene before translation), e.g. fog-cube at albedo 0.9.
 
 Modules: protocol_scene.py (--set edits, the stripped [integrator], what cannot be mapped),
-protocol_render.py (idleness, timed brume and Mitsuba renders, the sampler pilot), this file
+protocol_render.py (idleness, the host, timed brume and Mitsuba renders, the sampler pilot),
+protocol_growth.py (the ratio's change over the budgets, with its interval), this file
 (reference, scores, runs, outputs).
 
-Outputs: <out>.json (everything: runs, pilot, reference, commands, loads), <out>.md (table rows
-for docs/performance.md), a printed summary; EXRs in the work folder (<out>-work by default).
+Outputs: <out>.json (everything: runs, pilot, reference, commands, loads, the host's CPU, SIMD
+level and Dr.Jit's LLVM target, since a ratio holds for its host only; the ratio's growth),
+<out>.md (table rows for docs/performance.md, the growth under them), a printed summary; EXRs
+in the work folder (<out>-work by default).
 Not mapped (refused with the reason, never approximated silently): a chromatic medium with a
 density (Mitsuba's grid medium is grey: it needs one render per bin group, density_check.py, not
 one timed render); a light with a spectral line (fog-room-laser's laser: protocol.sh gives both
@@ -94,7 +97,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import mitsuba_scene  # noqa: E402
 from compare import bin4, read_rgb, write_rgb  # noqa: E402
 from protocol_render import (  # noqa: E402
-    B_REF, M_REF, M_RUN, Peer, brume_fixed_cost, brume_render, chunk_ok, file_sha, machine_state, nonfinite, pilot,
+    B_REF, M_REF, M_RUN, Peer, brume_fixed_cost, brume_render, chunk_ok, file_sha, host, machine_state, nonfinite, pilot,
 )
 from protocol_growth import growth, growth_line  # noqa: E402
 from protocol_scene import check_mappable, edited_desc, spectral_media, strip_integrator  # noqa: E402
@@ -372,6 +375,7 @@ def report(a, s: Setup, ps: dict, ref: dict, pilot_rec: dict, fixed: dict | None
     doc = {
         "command": sys.argv, "scene": str(a.scene), "sets": a.set, "brume": s.brume_info, "mitsuba": {**ps, "sampler": s.peer.sampler},
         "pilot": pilot_rec, "reference": {k: v for k, v in ref.items() if k not in ("mean",)},
+        "host": host(sys.modules.get("drjit")),
         "brume_fixed_cost": fixed, "runs": rows, "summary": summary, "growth": change,
         "notes": ["brume's wall time is its whole process (start-up, scene load, automatic pilots); Mitsuba's "
                   "excludes scene load and JIT (one untimed warm-up): brume is charged more",
@@ -381,6 +385,9 @@ def report(a, s: Setup, ps: dict, ref: dict, pilot_rec: dict, fixed: dict | None
     }
     a.out.parent.mkdir(parents=True, exist_ok=True)
     a.out.with_name(a.out.name + ".json").write_text(json.dumps(doc, indent=2, default=float))
+    h = doc["host"]
+    print(f"host: {h['model']}, {h['cores']} cores, widest SIMD {h['simd']}, Dr.Jit's LLVM target "
+          f"{h.get('drjit_llvm_cpu')}", flush=True)
     md = markdown(scene, brume, peer, summary)
     if change:
         md += "\n" + growth_line(change)

@@ -48,6 +48,40 @@ def machine_state(settle: float) -> dict:
     return st
 
 
+def cpu_of(cpuinfo: str) -> dict:
+    """The CPU's model name and its widest SIMD level, from /proc/cpuinfo's text."""
+    model = next((line.split(":", 1)[1].strip() for line in cpuinfo.splitlines()
+                  if line.startswith("model name")), None)
+    flags = next((set(line.split(":", 1)[1].split()) for line in cpuinfo.splitlines()
+                  if line.startswith("flags")), set())
+    simd = next((level for level, flag in (("avx512", "avx512f"), ("avx2", "avx2"), ("avx", "avx"), ("sse4.2", "sse4_2"))
+                 if flag in flags), None)
+    return {"model": model, "simd": simd}
+
+
+def host(drjit=None) -> dict:
+    """The host a comparison ran on: Mitsuba's LLVM kernels gain from wide SIMD and brume's scalar
+    code does not, so a ratio holds for its host only (docs/performance.md: on an AVX2 host
+    Mitsuba rendered fog-cube at a third of the spp/s of the morning's host, brume at 0.6-0.8x).
+    With `drjit` given, its LLVM target CPU as Dr.Jit chose it (None where the symbol is absent)."""
+    try:
+        rec = cpu_of(Path("/proc/cpuinfo").read_text())
+    except OSError:
+        rec = {"model": None, "simd": None}
+    rec["cores"] = os.cpu_count()
+    if drjit is not None:
+        try:
+            import ctypes
+
+            lib = ctypes.CDLL(str(Path(drjit.__file__).parent / "libdrjit-core.so"))
+            f = lib._Z19jit_llvm_target_cpuv  # jit_llvm_target_cpu(), a C++ symbol of Dr.Jit's core
+            f.restype = ctypes.c_char_p
+            rec["drjit_llvm_cpu"] = (f() or b"").decode() or None
+        except (OSError, AttributeError):
+            rec["drjit_llvm_cpu"] = None
+    return rec
+
+
 # ----------------------------------------------------------------------------- brume
 
 def check_radiometric(path: Path) -> None:
