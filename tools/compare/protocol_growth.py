@@ -92,7 +92,8 @@ def main() -> None:
             print(table_row(arg, runs))
         else:
             line = growth_line(growth(runs, times))
-            print(f"{arg}: {line.strip() or 'one budget only'}")
+            why = "one budget only" if len(times) < 2 else "no budget with both renderers' runs"
+            print(f"{arg}: {line.strip() or why}")
 
 
 if __name__ == "__main__":
