@@ -124,9 +124,13 @@ def test_merging_films_of_other_renders_is_refused(tmp_path):
 
 
 def test_ctrl_c_raises_keyboard_interrupt_and_returns_nothing():
-    # In a child interpreter: SIGINT to itself one second into a long render.
+    # In a child interpreter: SIGINT to itself one second into a long render. A shell runs a
+    # background job (`cmd &`) with SIGINT ignored, its children inherit that, and Python then
+    # leaves it ignored: the child restores the handler that an interactive Python has, so
+    # that the test means the same however the suite was started.
     code = textwrap.dedent(f"""
         import os, signal, sys, threading, time
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         import brume
         scene = brume.load({str(SCENE)!r}, set={{"camera.width": 24, "camera.height": 12}})
         threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
