@@ -194,7 +194,7 @@ fn sigint_keeps_completed_passes_and_they_resume_exactly() {
         "-o",
         "i.png",
     ]);
-    let child = Command::new(env!("CARGO_BIN_EXE_brume"))
+    let child = signalled(env!("CARGO_BIN_EXE_brume"))
         .current_dir(d)
         .args(&args)
         .stdout(Stdio::null())
@@ -554,11 +554,32 @@ fn leftover_temporary_files_of_killed_runs_are_removed() {
 /// Slow passes (a few hundred milliseconds), so that a test can act between them.
 const SLOW: &[&str] = &["--set", "integrator.forward_rays=400000"];
 
+/// `program` with SIGINT, SIGTERM and SIGHUP at their defaults, for a test that sends one of
+/// them: brume keeps a signal it was started with ignored (`cli::render::interrupt`), and a
+/// test suite run as a script's background job (`cmd &`) or under nohup passes SIGINT or
+/// SIGHUP ignored to every child.
+fn signalled(program: &str) -> Command {
+    use std::os::unix::process::CommandExt;
+    let mut cmd = Command::new(program);
+    // SAFETY: between fork and exec the child only calls signal(2), which is
+    // async-signal-safe, with SIG_DFL (no handler function).
+    unsafe {
+        cmd.pre_exec(|| {
+            use nix::sys::signal::{SigHandler, Signal, signal};
+            for s in [Signal::SIGINT, Signal::SIGTERM, Signal::SIGHUP] {
+                signal(s, SigHandler::SigDfl).map_err(std::io::Error::from)?;
+            }
+            Ok(())
+        });
+    }
+    cmd
+}
+
 fn spawn_render(dir: &Path, extra: &[&str]) -> std::process::Child {
     let s = scene(dir);
     let mut args = vec!["render".to_string(), s.to_str().unwrap().to_string()];
     args.extend(SMALL.iter().chain(SLOW).chain(extra).map(|a| a.to_string()));
-    Command::new(env!("CARGO_BIN_EXE_brume"))
+    signalled(env!("CARGO_BIN_EXE_brume"))
         .current_dir(dir)
         .args(&args)
         .stdout(Stdio::null())

@@ -8,7 +8,7 @@ use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::{Duration, Instant};
 
-use super::{SMALL, scene};
+use super::{SMALL, scene, signalled};
 
 /// How long brume may take to exit after SIGTERM.
 const PROMPT: Duration = Duration::from_secs(20);
@@ -22,9 +22,15 @@ struct Running {
 
 impl Running {
     fn start(dir: &Path, args: &[&str]) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_brume"))
+        Self::spawn(signalled(env!("CARGO_BIN_EXE_brume")), dir, args)
+    }
+
+    /// `cmd args...` (cmd runs brume, maybe through another program such as nohup).
+    fn spawn(mut cmd: Command, dir: &Path, args: &[&str]) -> Self {
+        let mut child = cmd
             .current_dir(dir)
             .args(args)
+            .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
@@ -68,19 +74,28 @@ impl Running {
 
     /// Sends SIGTERM and waits (at most `PROMPT`, then kills it and fails) for the exit:
     /// (exit status, all of stderr).
-    fn terminate(mut self) -> (Option<i32>, String) {
+    fn terminate(self) -> (Option<i32>, String) {
+        self.signal("TERM", PROMPT)
+    }
+
+    /// Sends SIG`name` and waits (at most `limit`, then kills it and fails) for the exit:
+    /// (exit status, all of stderr).
+    fn signal(mut self, name: &str, limit: Duration) -> (Option<i32>, String) {
         let pid = self.child.id().to_string();
-        let kill = Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+        let kill = Command::new("kill")
+            .args([&format!("-{name}"), &pid])
+            .status()
+            .unwrap();
         assert!(kill.success());
         let t0 = Instant::now();
         let status = loop {
             if let Some(status) = self.child.try_wait().unwrap() {
                 break status;
             }
-            if t0.elapsed() > PROMPT {
+            if t0.elapsed() > limit {
                 let _ = self.child.kill();
                 let _ = self.child.wait();
-                panic!("still running {PROMPT:?} after SIGTERM: {}", self.seen);
+                panic!("still running {limit:?} after SIG{name}: {}", self.seen);
             }
             std::thread::sleep(Duration::from_millis(20));
         };
@@ -258,4 +273,32 @@ fn sigterm_while_the_gather_is_built_exits_promptly() {
         t0.elapsed()
     );
     assert_kept_nothing(d, code, &err);
+}
+
+/// `nohup brume render` ignores SIGHUP, and brume, which catches SIGHUP with SIGINT and SIGTERM,
+/// keeps it ignored: a hangup (the ssh session that started a long render closing) neither
+/// stops nor shortens the render, which runs its whole time budget and exits 0. The same
+/// render without nohup stops at SIGHUP and saves its passes (130).
+#[test]
+fn a_render_under_nohup_outlives_the_hangup() {
+    let budget = ["--time", "4", "-o", "i.exr"];
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let s = scene(d);
+    let mut args = vec![env!("CARGO_BIN_EXE_brume"), "render", s.to_str().unwrap()];
+    args.extend_from_slice(SMALL);
+    args.extend_from_slice(&budget);
+    let mut r = Running::spawn(signalled("nohup"), d, &args);
+    r.wait_for_line("render: ");
+    let (code, err) = r.signal("HUP", Duration::from_secs(120));
+    assert_eq!(code, Some(0), "{err}");
+    assert!(!err.contains("interrupt"), "{err}");
+    assert!(d.join("i.exr").exists(), "{err}");
+
+    let t = tempfile::tempdir().unwrap();
+    let mut r = start_render(t.path(), &budget);
+    r.wait_for_line("render: ");
+    let (code, err) = r.signal("HUP", PROMPT);
+    assert_eq!(code, Some(130), "{err}");
+    assert!(err.contains("interrupted: kept"), "{err}");
 }

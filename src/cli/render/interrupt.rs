@@ -5,9 +5,17 @@
 //! (a large spectral EXR takes a while), the first lets the writing finish and brume then exits
 //! 130. In both a second aborts at once with 130: every output is written to a temporary name
 //! and renamed into place, so an abort leaves each file either complete or as it was.
+//!
+//! A signal that brume was started with ignored stays ignored, as in any program that does not
+//! catch it: `nohup brume render ...` ignores SIGHUP, so a long render started over ssh outlives
+//! the terminal, and a script's background job (`brume render ... &`) ignores SIGINT, so a
+//! Ctrl-C meant for the script does not stop it. (The handler catches SIGINT, SIGTERM and
+//! SIGHUP alike: before this, nohup's ignored SIGHUP stopped the render.)
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
+
+use nix::sys::signal::{SigHandler, Signal, signal};
 
 /// Exit status of an interrupted render (the shell convention for SIGINT).
 pub const INTERRUPTED: u8 = 130;
@@ -90,6 +98,7 @@ impl Interrupt {
 /// Installs the handler. Called first thing, so that a signal during scene loading and building
 /// is caught as well.
 pub fn install(quiet: bool) -> Interrupt {
+    let ignored = ignored_at_start();
     let stop = Arc::new(AtomicBool::new(false));
     let phase = Arc::new(AtomicU8::new(Phase::Setup as u8));
     let count = AtomicUsize::new(0);
@@ -117,7 +126,38 @@ pub fn install(quiet: bool) -> Interrupt {
     if let Err(e) = result {
         eprintln!("brume: warning: cannot catch interrupts ({e}); Ctrl-C will lose the render");
     }
+    for s in ignored {
+        ignore(s);
+    }
     Interrupt { stop, phase }
+}
+
+/// The signals the handler catches (`ctrlc`'s `termination` set).
+const CAUGHT: [Signal; 3] = [Signal::SIGINT, Signal::SIGTERM, Signal::SIGHUP];
+
+/// Those of [`CAUGHT`] that this process was started with ignored (the module's comment). Each
+/// is set to ignored and its previous disposition put back at once: that is how a signal's
+/// disposition is read.
+fn ignored_at_start() -> Vec<Signal> {
+    CAUGHT
+        .into_iter()
+        .filter(|&s| match ignore(s) {
+            Some(SigHandler::SigIgn) => true,
+            Some(previous) => {
+                // SAFETY: `previous` is the disposition this process had a moment ago (the
+                // default, at start); no handler of brume's runs between the two calls.
+                let _ = unsafe { signal(s, previous) };
+                false
+            }
+            None => false,
+        })
+        .collect()
+}
+
+/// Ignores `s`; its previous disposition, or None if the system refused.
+fn ignore(s: Signal) -> Option<SigHandler> {
+    // SAFETY: SIG_IGN installs no handler function, so nothing can run in a signal context.
+    unsafe { signal(s, SigHandler::SigIgn) }.ok()
 }
 
 #[cfg(test)]
