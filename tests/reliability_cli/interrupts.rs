@@ -1,6 +1,7 @@
 //! SIGTERM inside a pass that would run for hours and during a setup that would take minutes:
 //! brume exits promptly with 130 and says what it kept. The time bounds are liveness checks
-//! (generous: an ignored signal means hours here), not measurements.
+//! (generous: an ignored signal means hours here), not measurements. SIGHUP stops a render
+//! like SIGTERM, unless brume was started with it ignored (nohup).
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
