@@ -64,6 +64,12 @@ pub enum MergeError {
     Shape,
     #[error("pass ranges are not adjacent: {0}..{1} then {2}..{3}")]
     Gap(u64, u64, u64, u64),
+    /// The parts' automatic settings differ (brumes whose pilot passes choose differently).
+    #[error(
+        "the films' automatic settings differ: {0} in one, {1} in the other (rendered by \
+         brumes whose pilot passes choose differently); merge parts of one brume's render"
+    )]
+    Choice(String, String),
 }
 
 impl Film {
@@ -257,6 +263,11 @@ impl Film {
         if !self.same_shape(other) {
             return Err(MergeError::Shape);
         }
+        if let (Some(a), Some(b)) = (self.auto_choice(), other.auto_choice())
+            && a != b
+        {
+            return Err(MergeError::Choice(a.into(), b.into()));
+        }
         if self.passes > 0 && other.passes > 0 {
             if other.first == self.end() {
                 // other follows
@@ -287,11 +298,19 @@ impl Film {
         self.passes += other.passes;
         self.dropped += other.dropped;
         // Parts of one render made the same choice; a part written before films kept it has
-        // none.
+        // none. (Checked before anything is added, below.)
         if self.auto_settings.is_empty() {
             self.auto_settings.clone_from(&other.auto_settings);
         }
         Ok(())
+    }
+
+    /// The settings the automatic choice recorded on this film gave its passes (`q = [..],
+    /// forward_rays = .., camera_samples = ..`, the end of the report's first line); None
+    /// without one.
+    pub fn auto_choice(&self) -> Option<&str> {
+        let first = self.auto_settings.first()?;
+        first.rfind(": q = ").map(|i| &first[i + 2..])
     }
 
     /// The mean over passes, its standard error, and the two component layers.

@@ -25,6 +25,9 @@ pub struct ChunkSplats {
     dense: Vec<f32>,
     is_dense: bool,
     dropped: u64,
+    /// Nested estimates' additions (`PassBuffer::variants`): slot `variant * pixels + pixel`
+    /// and value, always a log (a pass has them only as pilots on a lattice of pixels).
+    variant_log: Vec<(u32, f32)>,
 }
 
 impl ChunkSplats {
@@ -55,6 +58,7 @@ impl ChunkSplats {
             dense: Vec::new(),
             is_dense: false,
             dropped: 0,
+            variant_log: Vec::new(),
         }
     }
 
@@ -98,6 +102,29 @@ impl ChunkSplats {
             .map(|l| (LAYERS + l) * self.pixels + pixel);
         for s in std::iter::once(slot).chain(light_slot) {
             self.add_values(s, w.iter().zip(f).map(|(w, f)| w * f * scale));
+        }
+    }
+
+    /// Adds `factor * sum(w * f * scale)` to the total of `pixel` in each variant `v` whose
+    /// `factors[v]` is Some (`integrator::nest`); a sample with a non-finite bin is left out,
+    /// as [`Self::splat`] leaves it out of the image (and counts it there).
+    pub fn add_to_variants(
+        &mut self,
+        pixel: usize,
+        (w, f, scale): (&[f32], &[f32], f32),
+        factors: &[Option<f32>],
+    ) {
+        let n = self.n;
+        let (w, f) = (&w[..n], &f[..n]);
+        if !products_finite(w, f, scale) {
+            return;
+        }
+        let total: f32 = w.iter().zip(f).map(|(w, f)| w * f * scale).sum();
+        for (v, factor) in factors.iter().enumerate() {
+            if let Some(k) = factor {
+                let slot = (v * self.pixels + pixel) as u32;
+                self.variant_log.push((slot, total * k));
+            }
         }
     }
 
@@ -178,6 +205,11 @@ impl ChunkSplats {
             (self.pixels, n, self.lights, self.sensors)
         );
         buf.dropped += std::mem::take(&mut self.dropped);
+        for (slot, v) in self.variant_log.drain(..) {
+            if let Some(t) = buf.variants.get_mut(slot as usize) {
+                *t += f64::from(v);
+            }
+        }
         if self.is_dense {
             let dense = std::mem::take(&mut self.dense);
             for (slot, d) in dense.chunks_exact(n).enumerate() {
@@ -206,7 +238,10 @@ impl ChunkSplats {
 
     /// Bytes held (log and dense buffer), for memory reports.
     pub fn bytes(&self) -> usize {
-        self.slots.capacity() * 4 + self.values.capacity() * 4 + self.dense.capacity() * 4
+        self.slots.capacity() * 4
+            + self.values.capacity() * 4
+            + self.dense.capacity() * 4
+            + self.variant_log.capacity() * 8
     }
 }
 

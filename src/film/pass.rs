@@ -23,6 +23,10 @@ pub struct PassBuffer {
     pub sensor_data: Vec<f32>,
     /// Samples not added because a value was not finite (reaches `Film::dropped`).
     pub dropped: u64,
+    /// `[variant][pixel]`: per-pixel totals (over layers and bins) of the estimates nested in
+    /// a pass (`integrator::nest`); empty but in the automatic settings' nested pilots. Never
+    /// added to a film.
+    pub variants: Vec<f64>,
 }
 
 impl PassBuffer {
@@ -42,7 +46,14 @@ impl PassBuffer {
             sensors,
             sensor_data: vec![0.0; sensors * n],
             dropped: 0,
+            variants: Vec::new(),
         }
+    }
+
+    /// This buffer with room for the totals of `count` nested estimates (`variants`).
+    pub fn with_variants(mut self, count: usize) -> Self {
+        self.variants = vec![0.0; count * self.pixels];
+        self
     }
 
     /// Adds the sample `w * f * scale` (per bin) to a pixel, unless some bin of it is not

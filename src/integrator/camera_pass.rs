@@ -35,6 +35,9 @@ pub struct CameraJob {
     /// Camera paths are traced in the pixels of every `stride`-th row and column only (1:
     /// every pixel; automatic settings' pilots sample a lattice, `auto::PILOT_STRIDE`).
     pub stride: u32,
+    /// In a nested pass (`nest`), the camera paths per pixel of its subset: a pixel's later
+    /// paths are extra ones, and say so in their records.
+    pub nest_paths: Option<u32>,
 }
 
 /// Why a camera pass gave no tile.
@@ -176,6 +179,8 @@ fn trace_row(
         }
         let pixel = y * w + x;
         let mut nee = NeeSums::new(job.light_layers);
+        // A nested pass's extra paths sum their next-event estimates apart (`nest`).
+        let mut extra_nee = NeeSums::new(job.light_layers);
         // With the Sobol sampler the pixel's camera paths of this pass are the points of its
         // own sequence (rng module comment): their pixel positions and first numbers are
         // stratified among themselves, scrambled apart from other pixels' and passes'.
@@ -191,8 +196,11 @@ fn trace_row(
             let px = x as f32 + rng.random::<f32>();
             let py = y as f32 + rng.random::<f32>();
             let ray = scene.camera.generate_ray(px, py);
-            let mut cam = CameraPath::new(scene, integrator, pixel, &mut out, &mut nee);
+            let extra = job.nest_paths.is_some_and(|k| s >= k);
+            let sums = if extra { &mut extra_nee } else { &mut nee };
+            let mut cam = CameraPath::new(scene, integrator, pixel, &mut out, sums);
             cam.radii = job.radii;
+            cam.extra = extra;
             path::trace(
                 scene,
                 max_depth,
@@ -202,6 +210,7 @@ fn trace_row(
                 &mut rng,
             );
             out.paths += 1;
+            out.extra_paths += u64::from(extra);
             let now = gather::peak_bytes_for(&out);
             let total = room.bytes.fetch_add(now - counted, Ordering::Relaxed) + now - counted;
             counted = now;
@@ -209,7 +218,8 @@ fn trace_row(
                 return None;
             }
         }
-        nee.push_into(&mut out, pixel);
+        nee.push_into(&mut out, pixel, false);
+        extra_nee.push_into(&mut out, pixel, true);
     }
     Some(out)
 }

@@ -12,7 +12,7 @@ use super::estimator::{CameraSegment, Estimator, VolumeEstimator};
 use super::oct::Oct;
 use super::path::{MediumStep, PathStep, SurfaceStep};
 use super::record::{
-    CLASS_ALL, CLASS_C, CameraOutput, DirectRecord, PRIMARY, SegmentRecord, SurfaceRecord,
+    CLASS_ALL, CLASS_C, CameraOutput, DirectRecord, EXTRA, PRIMARY, SegmentRecord, SurfaceRecord,
     VolumeRecord,
 };
 use super::rng::Rng;
@@ -42,7 +42,9 @@ impl NeeSums {
         }
     }
 
-    pub fn push_into(self, out: &mut CameraOutput, pixel: u32) {
+    /// Adds the sums to `out` as `pixel`'s records; `extra`: they are of a pixel's extra
+    /// camera paths in a nested pass (`nest`).
+    pub fn push_into(self, out: &mut CameraOutput, pixel: u32, extra: bool) {
         for (sum, to) in [
             (self.medium, &mut out.nee_medium),
             (self.surface, &mut out.nee_surface),
@@ -52,6 +54,7 @@ impl NeeSums {
                     pixel,
                     light,
                     value,
+                    extra,
                 });
             }
         }
@@ -83,6 +86,9 @@ pub struct CameraPath<'a> {
     /// Whether the path has had no scattering and no non-null surface event yet (a camera
     /// path's first volumes and surface spheres; false from the start for sensor paths).
     pub primary: bool,
+    /// Whether the path is one of its pixel's extra paths in a nested pass (`nest`): its
+    /// records say so.
+    pub extra: bool,
     /// Where and with what density the path last left a glossy (non-delta) surface by a BSDF
     /// sample, for the MIS weight of emitters it then hits; None after the camera, a delta
     /// bounce or a medium scattering. A sensor path starts with its sensor and the density of
@@ -114,6 +120,7 @@ impl<'a> CameraPath<'a> {
             sees_emitters: true,
             radii: Radii::one(0.0),
             primary: true,
+            extra: false,
             glossy_from: None,
             entered: None,
         }
@@ -149,7 +156,8 @@ impl<'a> CameraPath<'a> {
             CLASS_ALL
         } else {
             CLASS_C
-        } | if self.primary { PRIMARY } else { 0 };
+        } | if self.primary { PRIMARY } else { 0 }
+            | if self.extra { EXTRA } else { 0 };
         let cam = CameraSegment {
             medium: &self.scene.media[m as usize],
             medium_id: m,
@@ -357,6 +365,7 @@ impl PathStep for CameraPath<'_> {
                     pixel: self.pixel,
                     light: Some(l),
                     value: v,
+                    extra: self.extra,
                 });
             }
         }
@@ -457,6 +466,7 @@ impl CameraPath<'_> {
             scale: 1.0 / (pd * direct),
             scale_indirect: 1.0 / (pd * indirect),
             primary: self.primary,
+            extra: self.extra,
         });
     }
 }

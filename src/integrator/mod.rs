@@ -18,6 +18,7 @@ mod exp;
 pub mod gather;
 mod light_pass;
 mod memory;
+pub mod nest;
 mod oct;
 mod pass;
 mod path;

@@ -1,14 +1,13 @@
 //! The pass loop: camera pass -> gather structure -> light pass -> film, until a budget of
 //! passes or wall-clock time is spent. Each pass's radii follow the schedule of `radius`.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use super::auto::{Choice, Tuner, Work, pixel_totals};
-use super::camera_pass::{CameraJob, Halt, OverBudget, camera_pass, splat_direct};
-use super::gather::Gather;
-use super::light_pass::{LightJob, light_pass};
-use super::record::CameraOutput;
+use super::auto::{Choice, ChoiceChanged, PilotResult, Tuner, Work, settings_of};
+use super::camera_pass::OverBudget;
+use super::light_pass::LightJob;
+use super::nest::NestCounts;
 use super::sensors::{SensorJob, SensorPass, SensorPoint, sensor_points};
 use super::{Integrator, Radii};
 use crate::film::{Film, PassBuffer, SpectralImage};
@@ -83,6 +82,9 @@ pub struct Renderer<'a> {
     /// Set when a pass was abandoned because one row of camera paths exceeded the gather
     /// budget: every later pass would be too (see `over_budget`).
     over_budget: Option<OverBudget>,
+    /// Set when the film's passes were rendered with another automatic choice than the
+    /// pilots make now (see `choice_changed`).
+    choice_changed: Option<ChoiceChanged>,
     /// Told the number of records before a gather too large to build at once is built (the
     /// CLI's `--verbose` prints it: the build is the one silent phase of a pass).
     on_large_build: Option<Box<dyn FnMut(usize) + 'a>>,
@@ -112,6 +114,7 @@ impl<'a> Renderer<'a> {
             sensors: sensor_points(scene),
             integrator,
             over_budget: None,
+            choice_changed: None,
             on_large_build: None,
             stats: Stats::default(),
         }
@@ -161,6 +164,13 @@ impl<'a> Renderer<'a> {
     /// within the budget; `run_until` stops, `render_pass` adds nothing).
     pub fn over_budget(&self) -> Option<&OverBudget> {
         self.over_budget.as_ref()
+    }
+
+    /// Why no pass was added to a resumed film: its passes were rendered with another
+    /// automatic choice than this brume's pilot passes make (`run_until` stops before the
+    /// first pass).
+    pub fn choice_changed(&self) -> Option<&ChoiceChanged> {
+        self.choice_changed.as_ref()
     }
 
     /// The counters of the passes rendered so far.
@@ -219,24 +229,38 @@ impl<'a> Renderer<'a> {
         if !self.prepare(seq, stop) || !self.configure(seq) {
             return false;
         }
-        let Some((buf, work)) = self.render_into(seq, pass, stop) else {
+        let Some((buf, work, counts)) = self.render_into(seq, pass, stop) else {
             return false;
         };
         if let Some(t) = &mut self.tuner {
-            t.record(seq, pixel_totals(&buf.data, buf.pixels, buf.n), work);
+            let result = PilotResult::from_pass(&buf, work, t.nest(seq), &counts);
+            t.record(seq, result);
         }
         self.film.add_pass(&buf);
-        self.keep_choice();
-        true
+        self.keep_choice()
     }
 
     /// Puts the automatic settings' choice on the film once it is made, so that the film's
-    /// checkpoints and parts carry it to their images (`Film::auto_settings`).
-    fn keep_choice(&mut self) {
-        if self.film.auto_settings.is_empty()
-            && let Some(c) = self.tuner.as_ref().and_then(Tuner::choice)
-        {
-            self.film.auto_settings = c.report.clone();
+    /// checkpoints and parts carry it to their images (`Film::auto_settings`). False when the
+    /// film records another choice (a film another brume began, whose pilots chose
+    /// differently): its passes and this brume's would mix two configurations while its
+    /// images name one (`choice_changed`).
+    fn keep_choice(&mut self) -> bool {
+        let Some(c) = self.tuner.as_ref().and_then(Tuner::choice) else {
+            return true;
+        };
+        let now = settings_of(&c.config);
+        match self.film.auto_choice() {
+            None if self.film.auto_settings.is_empty() => {
+                self.film.auto_settings = c.report.clone();
+                true
+            }
+            Some(film) if film != now => {
+                let film = film.to_string();
+                self.choice_changed = Some(ChoiceChanged { film, now });
+                false
+            }
+            None | Some(_) => true,
         }
     }
 
@@ -255,14 +279,17 @@ impl<'a> Renderer<'a> {
             if !self.configure(next) {
                 return false;
             }
-            let Some((buf, work)) = self.render_into(next, next, stop) else {
+            let Some((buf, work, counts)) = self.render_into(next, next, stop) else {
                 return false;
             };
             self.stats.pilot_passes += 1;
             if let Some(t) = &mut self.tuner {
-                t.record(next, pixel_totals(&buf.data, buf.pixels, buf.n), work);
+                let result = PilotResult::from_pass(&buf, work, t.nest(next), &counts);
+                t.record(next, result);
             }
-            self.keep_choice();
+            if !self.keep_choice() {
+                return false;
+            }
             next += 1;
         }
         true
@@ -284,83 +311,17 @@ impl<'a> Renderer<'a> {
 
     /// Renders pass `pass` of the seed's sequence with the integrator as configured, at the
     /// radius of film pass `film_pass`, or None when `stop` was set. A pilot outside the film
-    /// draws the random numbers of another pass (`Tuner::random_pass`).
+    /// draws the random numbers of another pass (`Tuner::random_pass`); a pilot with nested
+    /// estimates (`Tuner::nest`) also forms theirs, and counts their work.
     fn render_into(
         &mut self,
         pass: u64,
         film_pass: u64,
         stop: &AtomicBool,
-    ) -> Option<(PassBuffer, Work)> {
-        let (scene, integrator) = (self.scene, &self.integrator);
-        self.radii = integrator.radii(film_pass);
-        let h = scene.camera.resolution().1;
-        let mut buf = self.film.pass_buffer();
-        let spp = integrator.camera_samples as f32;
-        let norm = 1.0 / (integrator.forward_rays as f32 * spp);
-        let budget = integrator.settings.gather_budget();
-        let mut work = Work::default();
-        let (stride, pass) = self.sampling(pass);
-        let sensors = self.sensor_pass(pass, stop)?;
-        let (scene, integrator) = (self.scene, &self.integrator);
-        let mut row = 0;
-        let mut tile = 0u64;
-        while row < h {
-            let t0 = Instant::now();
-            let job = CameraJob {
-                seed: self.seed,
-                pass,
-                radii: self.radii,
-                first_row: row,
-                budget_bytes: budget,
-                light_layers: buf.lights > 0,
-                stride,
-            };
-            let (mut out, next) = match camera_pass(scene, integrator, &job, stop) {
-                Ok(tile) => tile,
-                Err(Halt::Stopped) => return None,
-                Err(Halt::OverBudget(e)) => {
-                    self.over_budget = Some(e);
-                    return None;
-                }
-            };
-            let t1 = Instant::now();
-            let peak = super::gather::peak_bytes_for(&out);
-            self.stats.peak_build_bytes = self.stats.peak_build_bytes.max(peak);
-            self.stats.surface_records += out.surfaces.len() as u64;
-            self.stats.volume_records += out.volumes.len() as u64;
-            work.volumes += out.volumes.len() as u64;
-            let hook = &mut self.on_large_build;
-            let gather = build_gather(hook, &integrator.estimator, self.radii, &mut out, stop)?;
-            self.stats.peak_gather_bytes = self.stats.peak_gather_bytes.max(gather.bytes());
-            let t2 = Instant::now();
-            let light = LightJob {
-                seed: self.seed,
-                pass,
-                tile,
-                norm,
-                hits: AtomicU64::new(0),
-                segments: AtomicU64::new(0),
-                // The sensor paths' records join the first tile's light pass only.
-                sensors: sensors.as_ref().filter(|_| tile == 0).map(|s| &s.gather),
-            };
-            if !light_pass(scene, integrator, &gather, &light, &mut buf, stop) {
-                return None;
-            }
-            splat_direct(&out, &mut buf, 1.0 / spp);
-            let t3 = Instant::now();
-            work.paths += out.paths;
-            work.rays += integrator.forward_rays;
-            work.hits += light.hits.load(Ordering::Relaxed);
-            let rays = integrator.forward_rays;
-            self.stats
-                .add_tile(out.paths, rays, &light, [t0, t1, t2, t3]);
-            row = next;
-            tile += 1;
-        }
-        if let Some(s) = &sensors {
-            s.splat(&mut buf, integrator);
-        }
-        Some((buf, work))
+    ) -> Option<(PassBuffer, Work, NestCounts)> {
+        let nest = self.tuner.as_ref().and_then(|t| t.nest(pass)).cloned();
+        let sampling = self.sampling(pass);
+        self.render_sampled(sampling, film_pass, nest.as_ref(), stop)
     }
 
     /// How pass `pass` of the sequence samples: the stride of its pixel lattice, and the pass
@@ -423,17 +384,6 @@ impl<'a> Renderer<'a> {
     }
 }
 
-/// The gather structure of a tile's camera paths (None once `stop` is set), said first to
-/// the `on_large_build` hook when it is built apart.
-fn build_gather(
-    hook: &mut Option<Box<dyn FnMut(usize) + '_>>,
-    estimator: &super::Estimator,
-    radii: Radii,
-    out: &mut CameraOutput,
-    stop: &AtomicBool,
-) -> Option<Gather> {
-    if let (Some(f), true) = (hook, Gather::builds_apart(out)) {
-        f(out.surfaces.len() + out.volumes.len());
-    }
-    Gather::from_output_until(estimator, radii, out, stop)
-}
+mod render;
+#[cfg(test)]
+mod tests;

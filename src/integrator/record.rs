@@ -18,6 +18,9 @@ pub const CLASS_ALL: u8 = CLASS_C | CLASS_D;
 /// surface event: its volumes leave forward rays' direct and caustic light to the splat to the camera
 /// when `integrator.splat_to_camera` is on (`camera_splat`).
 pub const PRIMARY: u8 = 4;
+/// Flag of a segment of one of a pixel's extra camera paths in a nested pass (`nest`): not
+/// one of the first paths, whose estimate the pass also forms.
+pub const EXTRA: u8 = 8;
 
 /// An integration sphere on a diffuse surface (the surface engine's estimator). Its weight is
 /// `throughput * scale` (scale = 1 / the diffuse-part probability). The material is the
@@ -41,6 +44,8 @@ pub struct SurfaceRecord {
     /// it): such a sphere leaves forward rays' direct and caustic light to the splat to the camera when
     /// `integrator.splat_to_camera` is on (`camera_splat`).
     pub primary: bool,
+    /// Whether the camera path is one of its pixel's extra paths in a nested pass (`nest`).
+    pub extra: bool,
 }
 
 /// One camera segment in a medium that left at least one integration volume: what all its
@@ -54,7 +59,7 @@ pub struct SegmentRecord {
     /// Camera throughput at the segment's start (index into the pass's throughput table).
     pub throughput: u32,
     pub medium: u16,
-    /// Bit mask of CLASS_C / CLASS_D, and PRIMARY.
+    /// Bit mask of CLASS_C / CLASS_D, and PRIMARY and EXTRA.
     pub classes: u8,
 }
 
@@ -98,6 +103,8 @@ pub struct DirectRecord {
     /// sums several lights (no light layers are kept).
     pub light: Option<u32>,
     pub value: Spectrum,
+    /// Whether it came from a pixel's extra camera paths in a nested pass (`nest`).
+    pub extra: bool,
 }
 
 /// What one row (or any batch of pixels) of the camera pass produced: the records the gather
@@ -121,6 +128,8 @@ pub struct CameraOutput {
     pub nee_surface: Vec<DirectRecord>,
     /// Camera paths started.
     pub paths: u64,
+    /// Of them, the extra paths of a nested pass (`nest`).
+    pub extra_paths: u64,
 }
 
 impl CameraOutput {
@@ -153,6 +162,7 @@ impl CameraOutput {
         self.nee_medium.append(&mut other.nee_medium);
         self.nee_surface.append(&mut other.nee_surface);
         self.paths += other.paths;
+        self.extra_paths += other.extra_paths;
     }
 }
 

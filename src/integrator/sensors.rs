@@ -141,6 +141,7 @@ fn trace_batch(
                 pixel: s.index,
                 light: None,
                 value: e.sum() * (1.0 / PI),
+                extra: false,
             });
         }
         if pdf <= 0.0 {
@@ -155,7 +156,7 @@ fn trace_batch(
         let max_depth = integrator.settings.max_depth;
         path::trace(scene, max_depth, ray, s.medium, &mut cam, &mut rng);
     }
-    nee.push_into(&mut out, s.index);
+    nee.push_into(&mut out, s.index, false);
     out
 }
 

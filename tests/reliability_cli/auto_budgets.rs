@@ -60,3 +60,54 @@ fn automatic_budgets_give_the_same_bytes_by_every_path() {
     merge(d, &["p0.brume", "p1.brume", "-o", "o.exr", "-q"]);
     assert_same(d, "s.exr", "o.exr");
 }
+
+/// Rewrites the choice recorded in film file `name` as another brume's pilots might have made
+/// it: one more camera path per pixel than this brume's.
+fn as_another_brumes_choice(dir: &Path, name: &str) -> String {
+    let path = dir.join(name);
+    let mut f = checkpoint::read(&path).unwrap();
+    let first = f.film.auto_settings.first().cloned().expect("a choice");
+    let (head, paths) = first
+        .rsplit_once("camera_samples = ")
+        .expect("the choice names its camera paths");
+    let other: u32 = paths.trim().parse::<u32>().expect("a number") + 1;
+    f.film.auto_settings[0] = format!("{head}camera_samples = {other}");
+    checkpoint::write(&path, &f.film, &f.id).unwrap();
+    format!("camera_samples = {other}")
+}
+
+/// A film (or a part) whose passes another brume's pilots configured differently is refused,
+/// naming both choices, and nothing is written: its passes and this brume's would make one
+/// image of two configurations under one recorded choice.
+#[test]
+fn a_film_with_another_automatic_choice_is_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    render_auto(d, &["--passes", "1", "-o", "c.brume"]);
+    let theirs = as_another_brumes_choice(d, "c.brume");
+    let s = super::scene(d);
+    let mut args = vec!["render", s.to_str().unwrap(), "-q"];
+    args.extend_from_slice(super::SMALL);
+    args.extend_from_slice(AUTO);
+    args.extend_from_slice(&["--passes", "3", "--resume", "c.brume", "-o", "r.exr"]);
+    let o = brume(d, &args);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "resumed: {err}");
+    assert!(
+        err.contains(&theirs) && err.contains("automatic settings"),
+        "{err}"
+    );
+    assert!(!d.join("r.exr").exists(), "an image was written");
+    // Merging: two parts of one render whose recorded choices differ.
+    render_auto(d, &["--pass-range", "0..1", "-o", "p0.brume"]);
+    render_auto(d, &["--pass-range", "1..2", "-o", "p1.brume"]);
+    as_another_brumes_choice(d, "p1.brume");
+    let o = brume(d, &["merge", "p0.brume", "p1.brume", "-o", "m.exr", "-q"]);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "merged: {err}");
+    assert!(
+        err.contains(&theirs) && err.contains("automatic settings differ"),
+        "{err}"
+    );
+    assert!(!d.join("m.exr").exists(), "a merged image was written");
+}

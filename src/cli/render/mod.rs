@@ -184,6 +184,15 @@ fn render(
     if args.verbose {
         print_work(&renderer);
     }
+    // Nothing was added to the film: no output may claim otherwise.
+    if let Some(e) = renderer.choice_changed() {
+        anyhow::bail!(
+            "{}: {e}",
+            args.resume
+                .as_ref()
+                .map_or_else(|| "the film".to_string(), |p| p.display().to_string())
+        );
+    }
     let auto = renderer.auto_choice().cloned();
     let over_budget = renderer.over_budget().cloned();
     Ok((renderer.into_film(), interrupted, auto, over_budget))

@@ -21,14 +21,22 @@
 //! measured time, for the same reason.
 
 pub mod blocks;
+mod changed;
 mod choose;
 mod gain;
 pub mod model;
+mod plan;
+mod work;
 
 use gain::Gain;
 pub use gain::Z_SIGNIFICANT;
 
+use super::nest::Nest;
 use super::settings::{IntegratorDesc, VolumeKind};
+pub use changed::{ChoiceChanged, settings_of};
+use plan::PilotPass;
+pub use work::{PilotResult, Work, pixel_totals, variant_work};
+use work::{average, scaled};
 
 /// The smallest q an automatic choice takes: about 33 spheres per camera segment in thick fog.
 pub const Q_MIN: f32 = 0.03;
@@ -69,27 +77,6 @@ pub struct PassConfig {
     pub camera_samples: u32,
 }
 
-/// Deterministic work counters of a pass.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Work {
-    pub paths: u64,
-    pub volumes: u64,
-    pub rays: u64,
-    pub hits: u64,
-}
-
-impl Work {
-    /// The counters weighed into seconds on the reference machine.
-    pub fn parts(&self) -> [f64; 4] {
-        let n = [self.paths, self.volumes, self.rays, self.hits];
-        std::array::from_fn(|i| n[i] as f64 * COST_WEIGHTS[i])
-    }
-
-    pub fn cost(&self) -> f64 {
-        self.parts().iter().sum()
-    }
-}
-
 /// What a pilot configuration measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Role {
@@ -127,23 +114,26 @@ pub struct Choice {
 pub struct Tuner {
     /// The scene's configuration: the fixed values, and the fallbacks of the automatic ones.
     base: PassConfig,
+    /// The configurations measured (`Role`), in report order; `measures`, `shares` and
+    /// `block_shares` follow it.
     pilots: Vec<(Role, PassConfig)>,
+    /// The passes rendered to measure them (`plan`).
+    passes: Vec<PilotPass>,
     /// Image width and height (for the pilots' pixel lattice).
     resolution: (u32, u32),
     auto_rays: bool,
     auto_samples: bool,
     /// Pilot passes recorded so far (always a prefix of the pilot passes).
     recorded: u64,
-    /// Per-pixel totals of the first pass of the pair being recorded.
-    first: Option<Vec<f64>>,
+    /// Per role of the pass being recorded, the first pass's per-pixel totals, block means and
+    /// work (empty until its first pass is recorded).
+    first: Vec<(Vec<f64>, Vec<f64>, Work)>,
     measures: Vec<Measure>,
     /// Per measured pair, each pixel's `d = (x1 - x2)^2 / 2` times the lattice's scale: the
     /// pixel's share of the variance per pass (`Gain::paired` compares them pixel by pixel).
     shares: Vec<Vec<f64>>,
     /// The same per block of the pair's grid (`blocks`): the low-frequency noise.
     block_shares: Vec<Vec<f64>>,
-    /// The first pass's block means of the pair being recorded.
-    first_blocks: Option<Vec<f64>>,
     choice: Option<Choice>,
 }
 
@@ -170,49 +160,57 @@ impl Tuner {
             let shrink = u64::from(PILOT_STRIDE * PILOT_STRIDE);
             pilot.forward_rays = (base.forward_rays / shrink).max(1);
         }
-        let mut pilots = vec![(Role::Base, pilot.clone())];
-        if auto_q {
-            for m in 0..media {
-                let mut c = pilot.clone();
-                c.q[m] = Q_PILOT;
-                pilots.push((Role::Medium(m), c));
-            }
-        }
-        if auto_rays {
-            let mut c = pilot.clone();
-            c.forward_rays *= BUDGET_FACTOR;
-            pilots.push((Role::Rays, c));
-        }
-        if auto_samples {
-            let mut c = pilot.clone();
-            c.camera_samples *= BUDGET_FACTOR as u32;
-            pilots.push((Role::Samples, c));
-        }
-        if auto_rays && auto_samples {
-            let mut c = pilot;
-            c.forward_rays *= BUDGET_FACTOR;
-            c.camera_samples *= BUDGET_FACTOR as u32;
-            pilots.push((Role::Both, c));
-        }
+        let budgets = (auto_rays, auto_samples);
+        let (pilots, passes) = plan::plan(&pilot, media, auto_q, budgets, Q_PILOT);
+        let roles = pilots.len();
         Some(Self {
             base,
             pilots,
+            passes,
             resolution,
             auto_rays,
             auto_samples,
             recorded: 0,
-            first: None,
-            measures: Vec::new(),
-            shares: Vec::new(),
-            block_shares: Vec::new(),
-            first_blocks: None,
+            first: Vec::new(),
+            measures: vec![
+                Measure {
+                    variance: 0.0,
+                    se: 0.0,
+                    work: Work::default(),
+                };
+                roles
+            ],
+            shares: vec![Vec::new(); roles],
+            block_shares: vec![Vec::new(); roles],
             choice: None,
         })
     }
 
     /// Number of pilot passes (the film's first passes).
     pub fn pilot_passes(&self) -> u64 {
-        self.pilots.len() as u64 * REPEATS
+        self.passes.len() as u64 * REPEATS
+    }
+
+    /// The estimates nested in pilot pass `pass` (`integrator::nest`), if it has any.
+    pub fn nest(&self, pass: u64) -> Option<&Nest> {
+        self.passes.get((pass / REPEATS) as usize)?.nest.as_ref()
+    }
+
+    /// The configurations pilot pass `pass` measures: its own, then each nested estimate's
+    /// (in the nest's order).
+    pub fn measured_configs(&self, pass: u64) -> Vec<PassConfig> {
+        let Some(p) = self.passes.get((pass / REPEATS) as usize) else {
+            return Vec::new();
+        };
+        let mut out = vec![p.config.clone()];
+        let mut nested: Vec<(usize, usize)> = p
+            .roles
+            .iter()
+            .filter_map(|(r, v)| v.map(|v| (v, *r)))
+            .collect();
+        nested.sort_unstable();
+        out.extend(nested.into_iter().map(|(_, r)| self.pilots[r].1.clone()));
+        out
     }
 
     /// Whether the pilot passes are film passes: only when the budgets are the scene's (q
@@ -222,32 +220,15 @@ impl Tuner {
         !(self.auto_rays || self.auto_samples)
     }
 
-    /// What the pilot passes are to the render, in words for the report: a short render's user
-    /// must not read "pilot passes 0..8" of a 2-pass render as passes of its film.
-    fn pilots_said(&self) -> String {
-        let n = self.pilot_passes();
-        if self.pilots_join_film() {
-            format!(
-                "{n} pilot passes, the film's passes 0..{n} (kept in the image; a render of \
-                 fewer than {n} passes has only pilots, at their own q, and makes no choice)"
-            )
-        } else {
-            format!(
-                "{n} pilot passes rendered before the film's first pass and NOT in the film \
-                 (every process of the render traces them first, however few passes it asks \
-                 for: a render of N passes traces N + {n}; each pilot traces camera paths in \
-                 one pixel of {k} and, with automatic forward rays, {k} times fewer of them)",
-                k = PILOT_STRIDE * PILOT_STRIDE
-            )
-        }
-    }
-
-    /// Film pass p is pass `p + film_offset()` of the seed's sequence.
+    /// Film pass p is pass `p + film_offset()` of the seed's sequence. Pilots outside the
+    /// film draw the first pair's numbers (`random_pass`), and film passes start after one pair
+    /// per role: where they started before the budget pilots were nested in one pass, so that
+    /// a film an earlier brume began never meets its own passes' numbers again when resumed.
     pub fn film_offset(&self) -> u64 {
         if self.pilots_join_film() {
             0
         } else {
-            self.pilot_passes()
+            self.pilots.len() as u64 * REPEATS
         }
     }
 
@@ -268,8 +249,8 @@ impl Tuner {
 
     /// The configuration of pass `pass`: a pilot's, or the choice (None until it is made).
     pub fn config(&self, pass: u64) -> Option<&PassConfig> {
-        match self.pilots.get((pass / REPEATS) as usize) {
-            Some((_, c)) => Some(c),
+        match self.passes.get((pass / REPEATS) as usize) {
+            Some(p) => Some(&p.config),
             None => self.choice.as_ref().map(|c| &c.config),
         }
     }
@@ -279,62 +260,82 @@ impl Tuner {
         self.choice.as_ref()
     }
 
-    /// Records pass `pass` (its per-pixel totals and work) if it is the next pilot pass. A pilot
-    /// on a pixel lattice (`pixel_stride`) keeps the lattice's pixels, and its variance and
-    /// pixel-bound work (camera paths, volumes, gather hits) are scaled to the whole image.
-    pub fn record(&mut self, pass: u64, totals: Vec<f64>, work: Work) {
+    /// Records pass `pass` (its per-pixel totals and work, and its nested estimates') if it is
+    /// the next pilot pass. A pilot on a pixel lattice (`pixel_stride`) keeps the lattice's
+    /// pixels, and its variance and pixel-bound work (camera paths, volumes, gather hits) are
+    /// scaled to the whole image.
+    pub fn record(&mut self, pass: u64, result: PilotResult) {
         if pass != self.recorded || pass >= self.pilot_passes() {
             return;
         }
+        let roles = self.passes[(pass / REPEATS) as usize].roles.clone();
         let stride = self.pixel_stride(pass);
+        let mut firsts = std::mem::take(&mut self.first).into_iter();
+        let is_first = firsts.len() == 0;
+        for (role, variant) in roles {
+            let (totals, work) = match variant.and_then(|v| result.variants.get(v)) {
+                Some((t, w)) => (t.as_slice(), *w),
+                None => (result.totals.as_slice(), result.work),
+            };
+            let (totals, k, means) = self.sampled(totals, stride);
+            let work = scaled(&work, k);
+            if is_first {
+                self.first.push((totals, means, work));
+            } else if let Some(first) = firsts.next() {
+                self.measure_pair(role, first, (&totals, &means, work), k);
+            }
+        }
+        self.recorded += 1;
+        if self.recorded == self.pilot_passes() {
+            self.choice = Some(self.choose());
+        }
+    }
+
+    /// A pass's totals on the pixels it traced, the factor from them to the whole image, and
+    /// their block means (`blocks`).
+    fn sampled(&self, totals: &[f64], stride: u32) -> (Vec<f64>, f64, Vec<f64>) {
         let totals = if stride > 1 {
-            self.on_lattice(&totals, stride)
+            self.on_lattice(totals, stride)
         } else {
-            totals
+            totals.to_vec()
         };
         // A lattice of 1/k of the pixels: its sums times k estimate the image's.
         let k = self.pixels() as f64 / totals.len().max(1) as f64;
-        let work = scaled(&work, k);
         let (w, h) = self.resolution;
         let grid = (w.div_ceil(stride) as usize, h.div_ceil(stride) as usize);
         let means = blocks::block_means(&totals, grid.0, grid.1);
-        self.recorded += 1;
-        let Some(first) = self.first.take() else {
-            self.first = Some(totals);
-            self.first_blocks = Some(means);
-            self.measures.push(Measure {
-                variance: 0.0,
-                se: 0.0,
-                work,
-            });
-            return;
-        };
+        (totals, k, means)
+    }
+
+    /// Role `role`'s variance per pass from its pair: the first pass's totals, block means and
+    /// work, and the second's, on a sample of 1/k of the pixels.
+    fn measure_pair(
+        &mut self,
+        role: usize,
+        (first, first_means, first_work): (Vec<f64>, Vec<f64>, Work),
+        (totals, means, work): (&[f64], &[f64], Work),
+        k: f64,
+    ) {
         // Per pixel d = (x1 - x2)^2 / 2 is sigma^2 chi^2_1: E[d^2] = 3 sigma^4 and
         // Var(d) = 2 sigma^4 = (2/3) E[d^2], which gives the sum's standard error.
         let shares: Vec<f64> = first
             .iter()
-            .zip(&totals)
+            .zip(totals)
             .map(|(a, b)| 0.5 * (a - b) * (a - b) * k)
             .collect();
         let variance = shares.iter().sum();
         let d2 = shares.iter().map(|d| d * d).sum::<f64>();
-        self.shares.push(shares);
-        let first_means = self.first_blocks.take().unwrap_or_default();
-        self.block_shares.push(
-            first_means
-                .iter()
-                .zip(&means)
-                .map(|(a, b)| 0.5 * (a - b) * (a - b))
-                .collect(),
-        );
-        if let Some(m) = self.measures.last_mut() {
-            m.variance = variance;
-            m.se = (2.0 / 3.0 * d2).sqrt();
-            m.work = average(&m.work, &work);
-        }
-        if self.recorded == self.pilot_passes() {
-            self.choice = Some(self.choose());
-        }
+        self.shares[role] = shares;
+        self.block_shares[role] = first_means
+            .iter()
+            .zip(means)
+            .map(|(a, b)| 0.5 * (a - b) * (a - b))
+            .collect();
+        self.measures[role] = Measure {
+            variance,
+            se: (2.0 / 3.0 * d2).sqrt(),
+            work: average(&first_work, &work),
+        };
     }
 
     fn pixels(&self) -> usize {
@@ -349,6 +350,12 @@ impl Tuner {
             .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
             .filter_map(|(x, y)| totals.get((y * w + x) as usize).copied())
             .collect()
+    }
+
+    /// The configuration role `role` measures.
+    #[cfg(test)]
+    fn role_config(&self, role: Role) -> Option<&PassConfig> {
+        self.pilots.iter().find(|(r, _)| *r == role).map(|(_, c)| c)
     }
 
     fn measure(&self, role: Role) -> Option<(&PassConfig, Measure)> {
@@ -451,48 +458,13 @@ impl Tuner {
         report.insert(
             0,
             format!(
-                "chosen from {}: q = {:?}, forward_rays = {}, camera_samples = {}",
+                "chosen from {}: {}",
                 self.pilots_said(),
-                config.q,
-                config.forward_rays,
-                config.camera_samples
+                settings_of(&config)
             ),
         );
         Choice { config, report }
     }
-}
-
-/// Work of a pass that traced 1/k of the pixels, as the whole image would have cost: the
-/// counters that grow with the pixels traced (camera paths, their volumes, and the gather hits
-/// on them) times k; the forward rays are the pass's own.
-fn scaled(w: &Work, k: f64) -> Work {
-    let up = |n: u64| (n as f64 * k).round() as u64;
-    Work {
-        paths: up(w.paths),
-        volumes: up(w.volumes),
-        rays: w.rays,
-        hits: up(w.hits),
-    }
-}
-
-fn average(a: &Work, b: &Work) -> Work {
-    Work {
-        paths: (a.paths + b.paths) / 2,
-        volumes: (a.volumes + b.volumes) / 2,
-        rays: (a.rays + b.rays) / 2,
-        hits: (a.hits + b.hits) / 2,
-    }
-}
-
-/// Per pixel, the sum over layers and bins of a pass's values (`data` is `[layer][pixel][bin]`).
-pub fn pixel_totals(data: &[f32], pixels: usize, n: usize) -> Vec<f64> {
-    let mut out = vec![0.0f64; pixels];
-    for layer in data.chunks_exact(pixels * n) {
-        for (t, px) in out.iter_mut().zip(layer.chunks_exact(n)) {
-            *t += px.iter().map(|&v| v as f64).sum::<f64>();
-        }
-    }
-    out
 }
 
 #[cfg(test)]

@@ -45,18 +45,27 @@ fn uniform(rng: &mut Pcg64Mcg, sd: f64) -> f64 {
 /// Feeds every pilot pass of `t`, an image of `pixels` pixels: the totals `totals(pass,
 /// config)`, and work that grows with the configuration's rays and camera paths, counted, like
 /// the renderer's, on the pixels the pass traces (`pixel_stride`).
+/// A pass's nested estimates are fed as the estimates of their own configurations
+/// (`Tuner::measured_configs`).
 fn feed_totals(t: &mut Tuner, pixels: usize, mut totals: impl FnMut(u64, &PassConfig) -> Vec<f64>) {
     for pass in 0..t.pilot_passes() {
-        let c = t.config(pass).expect("a pilot pass").clone();
-        let values = totals(pass, &c);
         let traced = (pixels / (t.pixel_stride(pass) as usize).pow(2)) as u64;
-        let work = Work {
-            paths: traced * c.camera_samples as u64,
-            volumes: traced * c.camera_samples as u64,
-            rays: c.forward_rays,
-            hits: c.forward_rays * c.camera_samples as u64 * traced / pixels as u64,
+        let mut measured = t.measured_configs(pass).into_iter().map(|c| {
+            let work = Work {
+                paths: traced * c.camera_samples as u64,
+                volumes: traced * c.camera_samples as u64,
+                rays: c.forward_rays,
+                hits: c.forward_rays * c.camera_samples as u64 * traced / pixels as u64,
+            };
+            (totals(pass, &c), work)
+        });
+        let (totals, work) = measured.next().expect("a pilot pass");
+        let result = PilotResult {
+            totals,
+            work,
+            variants: measured.collect(),
         };
-        t.record(pass, values, work);
+        t.record(pass, result);
     }
 }
 
@@ -119,8 +128,9 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
     feed(&mut t, |_| 1.0);
     let first = &t.choice().expect("chosen").report[0];
     assert!(
-        first.contains("8 pilot passes rendered before the film's first pass and NOT in the film")
-            && first.contains("a render of N passes traces N + 8"),
+        first.contains("2 pilot passes rendered before the film's first pass and NOT in the film")
+            && first.contains("a render of N passes traces N + 2")
+            && first.contains("nested"),
         "{first}"
     );
     let mut t = q_tuner();
@@ -141,8 +151,12 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
 fn pilots_outside_the_film_sample_a_lattice_with_fewer_rays() {
     let mut t = budget_tuner();
     assert!(!t.pilots_join_film());
-    let base = t.config(0).expect("the base pilot").clone();
+    let base = t.role_config(Role::Base).expect("the base pilot").clone();
     assert_eq!(base.forward_rays, 50_000 / 4);
+    // One pass nests the four budget pilots: the largest (k s, k n).
+    assert_eq!(t.pilot_passes(), REPEATS);
+    let nest = t.config(0).expect("the nested pilot");
+    assert_eq!((nest.forward_rays, nest.camera_samples), (50_000, 4));
     for pass in 0..t.pilot_passes() {
         assert_eq!(t.pixel_stride(pass), PILOT_STRIDE, "pilot pass {pass}");
     }
@@ -187,11 +201,13 @@ fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
 fn pilots_outside_the_film_share_their_random_numbers() {
     let t = tuner(IntegratorDesc::default());
     let p = t.pilot_passes();
-    assert_eq!(p, 10);
+    // The nested budget pilots and the medium's; film passes start after a pair per role.
+    assert_eq!(p, 4);
+    assert_eq!(t.film_offset(), 10);
     for pass in 0..p {
         assert_eq!(t.random_pass(pass), pass % REPEATS, "pilot pass {pass}");
     }
-    for pass in p..p + 4 {
+    for pass in t.film_offset()..t.film_offset() + 4 {
         assert_eq!(t.random_pass(pass), pass, "film pass {pass}");
     }
     let t = q_tuner();
@@ -277,7 +293,7 @@ fn shared_pilot_noise_invents_no_gain() {
 fn feed_structured(t: &mut Tuner, (a, b, c): (f64, f64, f64)) {
     const W: usize = 256;
     let keys: Vec<u64> = (0..t.pilot_passes()).map(|p| t.random_pass(p)).collect();
-    let base = t.config(0).expect("a pilot").clone();
+    let base = t.role_config(Role::Base).expect("a pilot").clone();
     let draw = |key: u64, part: u64, index: u64, len: usize, v: f64| -> Vec<f64> {
         let mut rng = Pcg64Mcg::seed_from_u64((key << 32) ^ (part << 24) ^ index);
         (0..len).map(|_| uniform(&mut rng, v.sqrt())).collect()
@@ -381,7 +397,7 @@ fn the_fourth_pilot_splits_the_noise_without_the_lines_noise() {
     assert!(terms[0].gain > 4.0 * terms[0].se, "{terms:?}");
     let (_, base) = t.measure(Role::Base).expect("measured");
     let (pixel, _) = t.noise_splits(&base).expect("resolved");
-    let s = t.config(0).expect("base").camera_samples as f64;
+    let s = t.role_config(Role::Base).expect("base").camera_samples as f64;
     assert!(
         (pixel.camera / s * e2 - terms[0].gain).abs() < 1e-9 * truth[0],
         "{pixel:?}"

@@ -3,7 +3,7 @@
 //! surface hit against the surface spheres.
 
 use std::f32::consts::PI;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64};
 
 use glam::Vec3;
 use rand::Rng as _;
@@ -13,9 +13,10 @@ use super::camera_splat;
 use super::chunk_order::{Shared, WakeOnPanic};
 
 use super::gather::Gather;
+use super::nest::{self, Deposit, Nest};
 use super::path::{self, MediumStep, PathStep, SurfaceStep};
 use super::record::{CLASS_C, CLASS_D};
-use super::rng::{self, Domain, Rng};
+use super::rng::Rng;
 use super::sensors::SensorGather;
 use super::target::Target;
 use crate::film::{ChunkSplats, Layer, PassBuffer};
@@ -25,7 +26,11 @@ use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, Tracker, sampl
 use crate::spectrum::Spectrum;
 use crate::world::Scene;
 
+mod chunk;
+mod nested;
 mod volumes;
+
+use chunk::trace_chunk;
 
 /// Forward rays per work item: fixed by the scene, never by the thread count, so that the sum
 /// order (and so every bit of the image) does not depend on how many threads ran. Small, so that
@@ -54,6 +59,13 @@ pub struct LightJob<'a> {
     pub segments: AtomicU64,
     /// The sensors' records and discs (the first tile of a pass with illuminance sensors).
     pub sensors: Option<&'a SensorGather>,
+    /// The estimates nested in the pass (`nest`): the pass's first `nest.rays` rays are those
+    /// of its subset.
+    pub nest: Option<&'a Nest>,
+    /// With a nest, the gather candidates met by the first rays on every record, by every ray
+    /// on the first camera paths' records, and by the first rays on those (`NestCounts::hits`
+    /// 1..4; `hits` is the first).
+    pub nested_hits: [AtomicU64; 3],
 }
 
 /// Traces the pass's forward rays against `gather` into `buf`. Returns false, leaving `buf`
@@ -84,49 +96,7 @@ pub fn light_pass(
                 // instead of waiting for it forever (the panic then reaches the caller).
                 let _wake = WakeOnPanic(&shared);
                 while let Some((c, mut sink)) = shared.next(stop, &empty) {
-                    let mut rng =
-                        rng::stream(job.seed, job.pass, Domain::Light, (job.tile << 40) | c);
-                    // Ray `c * chunk + i` of the pass takes point `c * chunk + i` of the pass's
-                    // Sobol sequence (rng module comment): the pass's rays are stratified as a
-                    // whole, whichever worker traces them.
-                    let sequence = rng::sequence(job.seed, job.pass, Domain::Light, job.tile);
-                    let mut tracer = ForwardTracer {
-                        scene,
-                        integrator,
-                        gather,
-                        sensors: job.sensors,
-                        norm: job.norm,
-                        buf: &mut sink,
-                        // NaN bits never equal a real origin's.
-                        origins: [([u32::MAX; 3], None); 8],
-                        next_origin: 0,
-                        flux: Spectrum::ZERO,
-                        flux0: 0.0,
-                        light: 0,
-                        class: CLASS_C,
-                        deposits: true,
-                        first_flight: true,
-                        specular_chain: true,
-                        // The gather tiles of a pass trace their own forward rays; one set
-                        // splats.
-                        splat_norm: (integrator.splat_to_camera && job.tile == 0)
-                            .then(|| 1.0 / total as f32),
-                        hits: 0,
-                        segments: 0,
-                        to_discs: false,
-                    };
-                    for i in 0..chunk.min(total - c * chunk) {
-                        // A chunk cut short is never used: `next` sees `stop` and aborts.
-                        if i % STOP_CHECK == 0 && stop.load(Ordering::Relaxed) {
-                            break;
-                        }
-                        if integrator.settings.sampler.stratifies() {
-                            rng.begin_sample(sequence, c * chunk + i);
-                        }
-                        tracer.trace(&mut rng);
-                    }
-                    job.hits.fetch_add(tracer.hits, Ordering::Relaxed);
-                    job.segments.fetch_add(tracer.segments, Ordering::Relaxed);
+                    trace_chunk((scene, integrator, gather), job, c, &mut sink, stop);
                     shared.finish(c, sink);
                 }
             });
@@ -169,14 +139,20 @@ struct ForwardTracer<'a> {
     splat_norm: Option<f32>,
     /// Gather candidates met (surface spheres and volumes passed to their test).
     hits: u64,
+    /// Of them, those of a nested pass's first camera paths (`nest`; not counted without).
+    first_paths_hits: u64,
     /// Segments traced (`PathStep::medium` and `vacuum` calls, one geometry intersection each).
     segments: u64,
     /// Whether the ray is on its first flight from a light whose direct light the sensors'
     /// discs gather (`SensorGather::disc_gathers`).
     to_discs: bool,
+    /// The estimates nested in the pass, and whether the ray being traced is one of the extra
+    /// rays beyond their subset's (`nest`).
+    nest: Option<&'a Nest>,
+    extra_ray: bool,
 }
 
-impl ForwardTracer<'_> {
+impl<'a> ForwardTracer<'a> {
     fn trace(&mut self, rng: &mut Rng) {
         let scene = self.scene;
         let u = [
@@ -256,8 +232,11 @@ impl ForwardTracer<'_> {
         let radius = gather.radii.of(direct);
         let inv_area = 1.0 / (PI * radius * radius);
         let mut hits = 0u64;
+        let mut first_paths_hits = 0u64;
+        let nest = self.nested(target);
         gather.surfaces_at(hit.p, radius, |rec| {
             hits += 1;
+            first_paths_hits += u64::from(!rec.extra);
             let rn = rec.n.decode();
             // Same side of the same surface as the camera path's hit (its own shape: the disc
             // fraction that renormalises the record counts only that shape).
@@ -288,8 +267,13 @@ impl ForwardTracer<'_> {
             let w = gather.throughput(rec.throughput);
             let (buf, norm) = (&mut *self.buf, self.norm);
             target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
+            let deposit = Deposit::Gathered {
+                extra_path: rec.extra,
+            };
+            nest::add(buf, nest, deposit, rec.pixel, (w, &factor.0[..n], norm));
         });
         self.hits += hits;
+        self.first_paths_hits += first_paths_hits;
     }
 
     /// Adds the flux of the forward segment `ray` up to `len` (a flight's flux where it crosses)
@@ -360,7 +344,7 @@ impl PathStep for ForwardTracer<'_> {
                     rng.random(),
                 )
             {
-                camera_splat::put(self.buf, Layer::Medium, v, self.light, scene.grid.n, norm);
+                self.splat_to_camera(Layer::Medium, v, norm);
             }
         }
         if self.to_discs {
@@ -416,7 +400,7 @@ impl PathStep for ForwardTracer<'_> {
             if let Some(norm) = self.splat_norm.filter(|_| self.specular_chain)
                 && let Some(v) = camera_splat::connect(scene, hit, ray.d, mat_id, &self.flux)
             {
-                camera_splat::put(self.buf, Layer::Surface, v, self.light, scene.grid.n, norm);
+                self.splat_to_camera(Layer::Surface, v, norm);
             }
             self.gather_surfaces(hit, ray.d);
         }

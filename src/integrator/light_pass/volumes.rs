@@ -7,7 +7,8 @@ use crate::film::Layer;
 use crate::geometry::Ray;
 use crate::integrator::estimator::{Estimator, ForwardSegment, VolumeEstimator};
 use crate::integrator::gather::Gather;
-use crate::integrator::record::PRIMARY;
+use crate::integrator::nest::{self, Deposit};
+use crate::integrator::record::{EXTRA, PRIMARY};
 use crate::integrator::target::Target;
 use crate::medium::{Along, ForwardFlight};
 
@@ -73,6 +74,7 @@ impl ForwardTracer<'_> {
         let n = scene.grid.n;
         let radius = gather.radii.of(self.first_flight);
         let (norm, class) = (self.norm, self.class);
+        let nest = self.nested(target);
         // A camera path's first volumes leave direct and caustic light to the splat
         // (`camera_splat`).
         let skip_primary = if self.specular_chain
@@ -97,9 +99,11 @@ impl ForwardTracer<'_> {
             along: flight.map_or(&IDENTITY, |(_, along)| along),
         };
         let mut hits = 0u64;
+        let mut first_paths_hits = 0u64;
         let planes = &gather.planes;
         gather.volumes_along(ray.o, ray.d, len, |seg, rec| {
             hits += 1;
+            first_paths_hits += u64::from(seg.classes & EXTRA == 0);
             if seg.classes & class == 0 || seg.classes & skip_primary != 0 {
                 return;
             }
@@ -112,8 +116,13 @@ impl ForwardTracer<'_> {
             let w = gather.throughput(seg.throughput);
             if let Some(factor) = e.contribution(&fwd, (seg, planes), rec, w, med, radius) {
                 target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
+                let deposit = Deposit::Gathered {
+                    extra_path: seg.classes & EXTRA != 0,
+                };
+                nest::add(buf, nest, deposit, seg.pixel, (w, &factor.0[..n], norm));
             }
         });
         self.hits += hits;
+        self.first_paths_hits += first_paths_hits;
     }
 }

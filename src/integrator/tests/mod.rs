@@ -35,6 +35,7 @@ fn untiled_pass(scene: &Scene, integrator: &Integrator, seed: u64) -> CameraOutp
         budget_bytes: usize::MAX,
         light_layers: false,
         stride: 1,
+        nest_paths: None,
     };
     let (out, rows) = camera_pass(scene, integrator, &job, &AtomicBool::new(false)).unwrap();
     assert_eq!(rows, scene.camera.resolution().1);

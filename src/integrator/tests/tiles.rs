@@ -34,6 +34,7 @@ fn job(integrator: &Integrator, first_row: u32, budget_bytes: usize) -> CameraJo
         budget_bytes,
         light_layers: false,
         stride: 1,
+        nest_paths: None,
     }
 }
 
