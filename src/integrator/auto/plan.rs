@@ -22,7 +22,8 @@ pub struct PilotPass {
 }
 
 /// The roles a tuner measures, in the order its reports give them, and the passes that
-/// measure them. `pilot` is the Base configuration; `auto_q` the number of automatic media.
+/// measure them. `pilot` is the Base configuration, `media` the scene's media, `auto_q` whether
+/// their q is automatic, and `q_pilot` the q of a medium's pilot.
 pub fn plan(
     pilot: &PassConfig,
     media: usize,
