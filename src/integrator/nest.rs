@@ -88,6 +88,30 @@ impl Nest {
     }
 }
 
+#[cfg(test)]
+impl Nest {
+    /// The four budget estimates (s n, s k n, k s n, k s k n, in that order) of a pass of `k`
+    /// times `paths` camera paths and `k` times `rays` forward rays: the tests' nest.
+    pub fn four(paths: u32, rays: u64, k: f32) -> Self {
+        let v = |sub_paths, sub_rays| Variant {
+            sub_paths,
+            sub_rays,
+        };
+        Nest {
+            paths,
+            rays,
+            path_factor: k,
+            ray_factor: k,
+            variants: vec![
+                v(true, true),
+                v(true, false),
+                v(false, true),
+                v(false, false),
+            ],
+        }
+    }
+}
+
 /// The most variants a nest holds (the four budget pilots).
 pub const MAX_VARIANTS: usize = 4;
 
@@ -182,22 +206,7 @@ mod tests {
     use super::*;
 
     fn nest() -> Nest {
-        let v = |sub_paths, sub_rays| Variant {
-            sub_paths,
-            sub_rays,
-        };
-        Nest {
-            paths: 1,
-            rays: 10,
-            path_factor: 4.0,
-            ray_factor: 4.0,
-            variants: vec![
-                v(true, true),
-                v(true, false),
-                v(false, true),
-                v(false, false),
-            ],
-        }
+        Nest::four(1, 10, 4.0)
     }
 
     /// Each variant's factor is its own norm over the pass's, for the deposits it keeps.

@@ -121,22 +121,7 @@ mod tests {
     /// the first rays' counters where it keeps only those.
     #[test]
     fn each_variant_counts_its_own_work() {
-        let v = |sub_paths, sub_rays| Variant {
-            sub_paths,
-            sub_rays,
-        };
-        let n = Nest {
-            paths: 1,
-            rays: 10,
-            path_factor: 4.0,
-            ray_factor: 4.0,
-            variants: vec![
-                v(true, true),
-                v(true, false),
-                v(false, true),
-                v(false, false),
-            ],
-        };
+        let n = Nest::four(1, 10, 4.0);
         let c = NestCounts {
             paths: 40,
             sub_paths: 10,
