@@ -329,3 +329,28 @@ def test_protocol_records_the_hosts_simd_level():
     assert protocol_render.cpu_of(avx512) == {"model": "Intel(R) Xeon(R) Gold", "simd": "avx512"}
     assert protocol_render.cpu_of(avx2) == {"model": "AMD EPYC", "simd": "avx2"}
     assert protocol_render.cpu_of("processor\t: 0\n") == {"model": None, "simd": None}
+
+
+def test_budget_grid_recovers_one_pass_variance_and_time():
+    """tools/compare/budget_grid.py: chunks of m and 2m passes in turn (unequal sizes, so the
+    weighted estimator is the one under test) give one pass's variance, with a per-pixel and a
+    4x4-binned figure, and the slope of the chunks' times leaves a render call's fixed cost out.
+    Passes drawn with a known variance (white noise of 0.3 per pixel, so the 4x4 blocks' is
+    0.3^2 / 16) and a known time (0.2 s a pass plus 0.15 s a call)."""
+    import budget_grid
+
+    rng = np.random.default_rng(11)
+    mean, sd, k, m0 = 2.0, 0.3, 24, 3
+    sizes = np.array([m0 * (1 + j % 2) for j in range(k)])
+    chunks = np.stack([mean + rng.normal(0.0, sd / np.sqrt(m), (32, 32, 3)) for m in sizes])
+    seconds = 0.15 + 0.2 * sizes + rng.normal(0.0, 0.005, k)
+    out = budget_grid.efficiency(chunks, seconds, sizes, np.random.default_rng(1))
+    v_pixel = (sd / mean) ** 2
+    # 23 degrees of freedom per element over 3072 elements: the mean's relative spread is
+    # sqrt(2 / 23 / 3072) = 0.5 %, and 192 blocks' 2.1 %; the bounds are 4 of those.
+    assert abs(out["pixel"]["variance"] / v_pixel - 1.0) < 0.02
+    assert abs(out["binned"]["variance"] / (v_pixel / 16) - 1.0) < 0.085
+    # Without the weights (every chunk counted as m0 passes) it would read 0.75x.
+    assert abs(out["seconds"] - 0.2) < 0.004  # the total over the passes would read 0.233
+    assert abs(out["pixel"]["efficiency"] * v_pixel * 0.2 - 1.0) < 0.04
+    assert 0.0 < out["pixel"]["se"] < 0.1 * out["pixel"]["efficiency"]
