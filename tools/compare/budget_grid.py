@@ -43,12 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-
-def bin4(img: np.ndarray) -> np.ndarray:
-    """4 x 4 block means of an (H, W, C) image (the protocol's binning; edges cut)."""
-    h, w = img.shape[0] // 4 * 4, img.shape[1] // 4 * 4
-    x = img[:h, :w]
-    return x.reshape(h // 4, 4, w // 4, 4, -1).mean(axis=(1, 3))
+from compare import bin4  # the protocol's 4 x 4 binning (edges cut)
 
 
 def pass_variance(means: np.ndarray, m: np.ndarray) -> float:
