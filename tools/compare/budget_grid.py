@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from compare import bin4  # the protocol's 4 x 4 binning (edges cut)
+from protocol_scene import parse_value
 
 
 def pass_variance(means: np.ndarray, m: np.ndarray) -> float:
@@ -185,8 +186,8 @@ def main(argv=None) -> int:
 
     overrides = {}
     for kv in args.set:
-        k, v = kv.split("=", 1)
-        overrides[k] = json.loads(v) if v[:1] in "[{\"0123456789-" or v in ("true", "false") else v
+        k, _, v = kv.partition("=")
+        overrides[k] = parse_value(v)  # TOML, as `brume render --set` reads it
     scene = brume.load(args.scene, set=overrides or None)
 
     seeds = [int(s) for s in args.seeds.split(",")]
