@@ -354,3 +354,44 @@ def test_budget_grid_recovers_one_pass_variance_and_time():
     assert abs(out["seconds"] - 0.2) < 0.004  # the total over the passes would read 0.233
     assert abs(out["pixel"]["efficiency"] * v_pixel * 0.2 - 1.0) < 0.04
     assert 0.0 < out["pixel"]["se"] < 0.1 * out["pixel"]["efficiency"]
+
+
+def test_lattice_bins_extrapolate_the_blocks_to_the_film_bins():
+    """tools/compare/lattice_bins.py on images of known structure: white noise of variance 1
+    per pixel plus a value shared by each 4x4 bin (variance 1/2). The film's bins hold
+    1/16 + 1/2 = 0.5625; the lattice's 2x2 blocks (4 of a bin's 16 pixels) 1/4 + 1/2 = 0.75; their
+    extrapolation 1.25 VB - 0.25 V1 the film's 0.5625. Over 200 seeds and 256 bins each mean
+    variance is known to about 0.6 % (0.004 absolute), the extrapolation to about 1 %: the
+    bound 0.03 is over 5 standard errors, and tells 0.5625 from 0.75."""
+    from lattice_bins import lattice_estimates
+
+    rng = np.random.default_rng(7)
+    n, w = 200, 64
+    shared = rng.normal(0.0, np.sqrt(0.5), (n, w // 4, w // 4)).repeat(4, axis=1).repeat(4, axis=2)
+    stack = rng.normal(0.0, 1.0, (n, w, w)) + shared
+    e = lattice_estimates(stack)
+    assert abs(e["pixel"] - 1.5) < 0.03
+    assert abs(e["film_bins"] - 0.5625) < 0.03
+    assert abs(e["blocks"] - 0.75) < 0.03
+    assert abs(e["extrapolated"] - 0.5625) < 0.03
+
+
+def test_grid_score_interpolates_in_log_budgets_and_scores_against_the_best():
+    """tools/compare/grid_score.py: on a grid whose efficiencies are powers of the budgets the
+    log-linear interpolation is exact between points and clamps beyond them; a choice at the
+    grid's best scores 1, one at a point of half the efficiency 0.5."""
+    from grid_score import efficiency, score
+
+    def eff(n, s):
+        return (n**0.5 * s**-0.25, n**0.25 * s**-0.5)
+
+    grid = {(n, s): eff(n, s) for n in (10_000, 40_000, 160_000) for s in (1, 4)}
+    got = efficiency(grid, 20_000, 2)
+    assert all(abs(g / w - 1.0) < 1e-12 for g, w in zip(got, eff(20_000, 2)))
+    clamped = efficiency(grid, 1_000_000, 16)
+    assert all(abs(g / w - 1.0) < 1e-12 for g, w in zip(clamped, eff(160_000, 4)))
+    # The best per pixel is (160 000, 1) and binned (160 000, 1) too: a score of 1.
+    assert all(abs(x - 1.0) < 1e-12 for x in score(grid, [(160_000, 1)]))
+    # 40 000 rays: per pixel 2x, binned sqrt(2)x below the best.
+    p, b, both = score(grid, [(40_000, 1)])
+    assert abs(p - 0.5) < 1e-12 and abs(b - 2**-0.5) < 1e-12 and abs(both - 2**-0.75) < 1e-12
