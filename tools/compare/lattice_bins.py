@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from compare import read_rgb
+from compare import bin4, read_rgb
 
 
 def lattice_estimates(stack: np.ndarray) -> dict:
@@ -35,7 +35,8 @@ def lattice_estimates(stack: np.ndarray) -> dict:
     def var(x):
         return x.var(axis=0, ddof=1)
 
-    bins = a.reshape(n, h4 // 4, 4, w4 // 4, 4).mean(axis=(2, 4))
+    # The protocol's own 4x4 binning (compare.bin4), image by image.
+    bins = np.stack([bin4(x)[..., 0] for x in a])
     lattice = a[:, ::2, ::2]
     blocks = lattice.reshape(n, h4 // 4, 2, w4 // 4, 2).mean(axis=(2, 4))
     points = var(lattice).reshape(h4 // 4, 2, w4 // 4, 2).mean(axis=(1, 3))
