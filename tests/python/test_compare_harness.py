@@ -395,3 +395,39 @@ def test_grid_score_interpolates_in_log_budgets_and_scores_against_the_best():
     # 40 000 rays: per pixel 2x, binned sqrt(2)x below the best.
     p, b, both = score(grid, [(40_000, 1)])
     assert abs(p - 0.5) < 1e-12 and abs(b - 2**-0.5) < 1e-12 and abs(both - 2**-0.75) < 1e-12
+
+
+def test_cost_fit_recovers_a_pass_part_per_pixel_and_bin(tmp_path):
+    """tools/compare/cost_fit.py fits seconds per counter and per pixel and spectral bin of a
+    pass (records holding `pixel_bins`): passes whose times are exactly a known weighting of
+    their counters, on two scenes of different sizes, give those weights back and no error. A
+    fit without the pass part cannot (it is the only term that differs between the scenes at
+    equal counters)."""
+    import json
+    import re
+    import subprocess
+
+    truth = {"paths": 2e-6, "volumes": 5e-7, "rays": 1e-6, "hits": 1e-7, "pixel_bins": 3e-8}
+    recs = []
+    for scene, pixel_bins, per_path in (("small", 64 * 64 * 16, 1.5), ("large", 256 * 128 * 32, 2.5)):
+        for rays in (10_000, 40_000):
+            for s in (1, 4):
+                paths = 4096 * s
+                # paths, volumes, rays, hits, segments
+                work = [paths, per_path * paths, rays, 3 * rays * s, 4 * rays]
+                t = (truth["paths"] * work[0] + truth["volumes"] * work[1] + truth["rays"] * work[2]
+                     + truth["hits"] * work[3] + truth["pixel_bins"] * pixel_bins)
+                recs.append({"scene": scene, "rays": rays, "samples": s, "q": "1",
+                             "pixel_bins": pixel_bins, "sec_per_pass": t, "work_per_pass": work})
+    path = tmp_path / "passes.jsonl"
+    path.write_text("".join(json.dumps(r) + "\n" for r in recs))
+    out = subprocess.run([sys.executable, str(ROOT / "tools" / "compare" / "cost_fit.py"), str(path)],
+                         capture_output=True, text=True, check=True).stdout
+    block = out.split("4 counters and pixels x bins", 1)[1]
+    got = {k: float(v) for k, v in re.findall(r"(\w+)=([0-9.eE+-]+)", block.splitlines()[0])}
+    for k, v in truth.items():
+        assert abs(got[k] / v - 1) < 1e-3, (k, got[k], v)
+    rms = float(re.search(r"rms log error within scenes ([0-9.]+)", block).group(1))
+    assert rms < 1e-3, rms
+    without = out.split("refit, 4 counters", 1)[1]
+    assert float(re.search(r"rms log error within scenes ([0-9.]+)", without).group(1)) > 0.01

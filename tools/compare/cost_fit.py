@@ -1,5 +1,6 @@
 """Fits cost weights to cost_passes.py's records: seconds per camera path, volume record,
-forward ray, forward segment and gather hit (and optionally a per-pass constant), by least
+forward ray, forward segment and gather hit, and optionally per pixel and spectral bin of a pass
+(records that hold `pixel_bins`) or a constant per pass, by least
 squares on the relative error with non-negative weights. Prints each scene's predicted /
 measured times and the rms log error of the predicted ratios between one scene's passes (what
 the tuner's choice depends on), in-sample and leaving each scene out of its own fit.
@@ -11,8 +12,8 @@ import sys
 
 import numpy as np
 
-NAMES = ["paths", "volumes", "rays", "segments", "hits", "const"]
-CURRENT = [5.0e-6, 8.0e-7, 2.5e-6, 0.0, 3.0e-7, 0.0]  # COST_WEIGHTS (no segments, no constant)
+NAMES = ["paths", "volumes", "rays", "segments", "hits", "const", "pixel_bins"]
+CURRENT = [5.0e-6, 8.0e-7, 2.5e-6, 0.0, 3.0e-7, 0.0, 0.0]  # COST_WEIGHTS (no segments, no per-pass part)
 
 
 def nnls(a, b):
@@ -30,7 +31,8 @@ def nnls(a, b):
 def main():
     recs = [json.loads(line) for line in open(sys.argv[1])]
     # The work line's order is paths, volumes, rays, hits, segments.
-    w = np.array([[r["work_per_pass"][i] for i in (0, 1, 2, 4, 3)] + [1.0] for r in recs])
+    w = np.array([[r["work_per_pass"][i] for i in (0, 1, 2, 4, 3)] + [1.0, r.get("pixel_bins", 0.0)]
+                  for r in recs])
     t = np.array([r["sec_per_pass"] for r in recs])
     scenes = list(dict.fromkeys(r["scene"] for r in recs))
     of = {sc: [i for i, r in enumerate(recs) if r["scene"] == sc] for sc in scenes}
@@ -53,8 +55,19 @@ def main():
         print(f"  rms log error within scenes {within(rel):.3f}" + (f", leaving the scene out {loo:.3f}" if loo else ""))
 
     show(np.array(CURRENT), "current")
-    for use, label in [([0, 1, 2, 4], "refit, 4 counters"), ([0, 1, 2, 3, 4], "with segments"),
-                       ([0, 1, 2, 3, 4, 5], "with segments and a constant")]:
+    fits = [([0, 1, 2, 4], "refit, 4 counters"), ([0, 1, 2, 3, 4], "with segments"),
+            ([0, 1, 2, 3, 4, 5], "with segments and a constant")]
+    if w[:, 6].all():
+        fits += [([0, 1, 2, 4, 6], "4 counters and pixels x bins"),
+                 ([0, 1, 2, 4, 5], "4 counters and a constant")]
+        # The tuner's weights as they are (one scale for them all) and a pass part beside them.
+        both = np.column_stack([w @ np.array(CURRENT), w[:, 6]])
+        x = nnls(both / t[:, None], np.ones(len(t)))
+        kept = np.array(CURRENT) * x[0]
+        kept[6] = x[1]
+        print(f"the tuner's weights and a pass part: {x[1] / x[0]:.3g} per pixel and bin in their units")
+        show(kept, "  as seconds")
+    for use, label in fits:
         rel_loo = np.zeros(len(t))
         for sc in scenes:
             m = np.array([r["scene"] != sc for r in recs])

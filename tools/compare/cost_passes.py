@@ -2,7 +2,9 @@
 stripped of its [integrator] table, at the q its automatic choice takes for seed 3), for
 fitting the tuner's cost weights (`integrator::auto::COST_WEIGHTS`; cost_fit.py). A pass's time
 is that of an 8-pass render minus a 2-pass one, over 6, so that start-up and loading cancel.
-Run on an idle machine. Output: JSON lines, one per (scene, forward rays, camera paths).
+Each record also holds the image's pixels x spectral bins, which every pass pays for whatever
+its budgets (its pass buffer, the splats' drain, the film's sums; cost_fit.py fits a weight for
+it). Run on an idle machine. Output: JSON lines, one per (scene, forward rays, camera paths).
 
     python tools/compare/cost_passes.py target/release/brume passes.jsonl
 """
@@ -11,6 +13,7 @@ import re
 import subprocess
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -53,6 +56,9 @@ def main():
         for name, path, sets in SCENES:
             src = Path(path)
             text, _, _ = strip_integrator(src.read_text())
+            desc = tomllib.loads(text)
+            # Every protocol scene names its image's size and bins.
+            pixel_bins = desc["camera"]["width"] * desc["camera"]["height"] * desc["film"]["bins"]
             tmp = src.parent / f".cost-{src.stem}.toml"
             tmp.write_text(text)
             try:
@@ -66,6 +72,7 @@ def main():
                         t2, w2, _ = run(brume, tmp, cfg, 2)
                         t8, w8, _ = run(brume, tmp, cfg, 8)
                         rec = {"scene": name, "rays": rays, "samples": s, "q": qs,
+                               "pixel_bins": pixel_bins,
                                "sec_per_pass": (t8 - t2) / 6,
                                "work_per_pass": [(a - b) / 6 for a, b in zip(w8, w2)]}
                         print(json.dumps(rec), file=out, flush=True)
