@@ -400,9 +400,9 @@ def test_grid_score_interpolates_in_log_budgets_and_scores_against_the_best():
 def test_cost_fit_recovers_a_pass_part_per_pixel_and_bin(tmp_path):
     """tools/compare/cost_fit.py fits seconds per counter and per pixel and spectral bin of a
     pass (records holding `pixel_bins`): passes whose times are exactly a known weighting of
-    their counters, on two scenes of different sizes, give those weights back and no error. A
-    fit without the pass part cannot (it is the only term that differs between the scenes at
-    equal counters)."""
+    their counters, on two scenes of different sizes, give those weights back and no error. The
+    four counters refitted without the pass part cannot reproduce the two scenes' times (rms log
+    error above 0.01), so the test fails if the pass part is dropped from the fit."""
     import json
     import re
     import subprocess
