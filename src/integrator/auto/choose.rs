@@ -70,9 +70,14 @@ impl Tuner {
         }
         let q = model::q_joint(&fits, b.variance, b.work.cost());
         let rest = b.variance - fits.iter().map(|f| f.slope).sum::<f64>();
+        // The line through the pilots' variances at q = 1 and `Q_PILOT` can fall below 0 at
+        // small q (the part not depending on q negative: rare bright samples at q = 1), and a
+        // negative variance here turns the budgets' search over, to the costliest pass
+        // (test_light_trace's spot fog, seed 7). The part not depending on q is at least 0.
+        variance = rest.max(0.0);
         for ((m, f), q) in media.iter().zip(&fits).zip(q) {
             config.q[*m] = q;
-            variance += f.slope * (q as f64 - 1.0);
+            variance += f.slope * q as f64;
             cost += f.sphere_cost * (1.0 / q as f64 - 1.0);
             report.push(format!(
                 "q[{m}] = {q:.3}: variance per pass V(q) = {:.4e} q + rest (S = (1+eps)A - B), \
