@@ -111,11 +111,12 @@ def test_brume_matches_light_tracer(brume, tmp_path):
     from compare import read_rgb
     from conftest import run_brume
 
-    def brume_bands(path: Path, view: dict, seeds, passes: int) -> np.ndarray:
+    def brume_bands(path: Path, view: dict, seeds, passes: int, *sets: str) -> np.ndarray:
         out = []
         for s in seeds:
             exr = tmp_path / f"b-{path.stem}-{s}.exr"
-            run_brume("render", path, "--passes", passes, "--seed", s, "-o", exr, "--quiet")
+            args = [a for kv in sets for a in ("--set", kv)]
+            run_brume("render", path, "--passes", passes, "--seed", s, "-o", exr, "--quiet", *args)
             out.append(bands(read_rgb(exr) @ LUMA, view))
         return np.array(out)
 
@@ -128,7 +129,13 @@ def test_brume_matches_light_tracer(brume, tmp_path):
 
     full = scene_file(tmp_path, 32, ENTRY)
     traced = np.array([bands(lt.render(lt.load(full), 3e5, 10 + s).sum(0)[1], ENTRY) for s in range(4)])
-    assert_agree(brume_bands(full, ENTRY, range(8), 128), traced.mean(0), traced.std(0, ddof=1) / 2, 4.0)
+    # The budgets pinned at the cheapest pass (q stays automatic): they change the cost and the
+    # noise, not the expectation this test checks, and the tuner's choice on this beam-lit fog
+    # swings with the seed (16 camera paths x 50 000 forward rays on seed 5, 50 000 x 1 on seed
+    # 7: over a minute each of a debug build's 128 passes, against about 10 s at the cheapest).
+    cheapest = ("integrator.forward_rays=10000", "integrator.camera_samples=1")
+    runs = brume_bands(full, ENTRY, range(8), 128, *cheapest)
+    assert_agree(runs, traced.mean(0), traced.std(0, ddof=1) / 2, 4.0)
 
 
 def test_light_tracer_refuses_what_it_cannot_trace(tmp_path):

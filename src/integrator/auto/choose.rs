@@ -92,9 +92,10 @@ impl Tuner {
         (variance, cost)
     }
 
-    /// The automatic budgets when neither budget pilot bought a measurable gain: the variance
-    /// is then ruled by rare bright samples (fog-room-laser: the laser's light gathered on
-    /// surfaces) that two passes cannot measure, and the cheapest passes win, the most of them
+    /// The automatic budgets when neither budget pilot bought a measurable gain, over every
+    /// pixel or in the bulk (`Gain::resolved_or_bulk`): the variance is then ruled by rare
+    /// bright samples (fog-room-laser: the laser's light gathered on surfaces) that two passes
+    /// cannot measure, and the cheapest passes win, the most of them
     /// per second (fog-room-laser at 96 x 72: 10 000 forward rays and 1 camera path per pass,
     /// 2.7x the efficiency of 50 000 and 1; docs/study.md). Keeping the base, as an earlier
     /// version did, kept paying for rays that bought nothing.
@@ -108,8 +109,11 @@ impl Tuner {
         }
         report.push(format!(
             "budgets: the cheapest, camera paths {} and forward rays {}: more of either did \
-             not lower the variance by {Z_SIGNIFICANT} standard errors",
-            config.camera_samples, config.forward_rays
+             not lower the variance by {Z_SIGNIFICANT} standard errors, over every pixel or \
+             without the largest {}% of differences",
+            config.camera_samples,
+            config.forward_rays,
+            super::gain::TAIL_SHARE * 100.0
         ));
     }
 
@@ -144,11 +148,11 @@ impl Tuner {
         let base = &self.pilots.first()?.1;
         let (s, n) = (base.camera_samples as f64, base.forward_rays as f64);
         let roles = [Role::Rays, Role::Samples];
-        let gains = roles.map(|r| self.gain(r).and_then(Gain::resolved));
+        let gains = roles.map(|r| self.gain(r).and_then(Gain::resolved_or_bulk));
         let terms = self.four_terms_in(&self.shares);
         let split = Self::split(s, n, b.variance, gains, terms)?;
         let block_split = self.block_variance().and_then(|v| {
-            let mut blocks = roles.map(|r| self.block_gain(r).and_then(Gain::resolved));
+            let mut blocks = roles.map(|r| self.block_gain(r).and_then(Gain::resolved_or_bulk));
             for (g, p) in blocks.iter_mut().zip(&gains) {
                 *g = g.filter(|_| p.is_some());
             }
@@ -176,7 +180,7 @@ impl Tuner {
         let Some((split, block_split)) = self.noise_splits(&b) else {
             return self.cheapest(config, report);
         };
-        let resolved = |r| self.gain(r).and_then(Gain::resolved).is_some();
+        let resolved = |r| self.gain(r).and_then(Gain::resolved_or_bulk).is_some();
         let (rays_gain, samples_gain) = (resolved(Role::Rays), resolved(Role::Samples));
         let noise = split.scaled(scale);
         // The base pass's cost parts, rescaled to the chosen q's cost.

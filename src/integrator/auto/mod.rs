@@ -388,7 +388,7 @@ impl Tuner {
         // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
         // missed twice) measured nothing, not a variance of zero.
         if other.iter().all(|d| *d == 0.0) {
-            return Some(Gain { gain: 0.0, se: 0.0 });
+            return Some(Gain::uniform(0.0, 0.0));
         }
         Some(Gain::paired(base, other))
     }
