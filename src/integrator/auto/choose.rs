@@ -82,13 +82,14 @@ impl Tuner {
                 *q = q.max(Q_PILOT);
             }
             report.push(format!(
-                "q: the pilots' line falls below 0 before q = 0 (part not depending on q                  {rest:.4e}): q no lower than the pilots' {Q_PILOT}"
+                "q: the pilots' line falls below 0 before q = 0 (part not depending on q \
+                 {rest:.4e}): q no lower than the pilots' {Q_PILOT}"
             ));
         }
-        // The line through the pilots' variances at q = 1 and `Q_PILOT` can fall below 0 at
-        // small q (the part not depending on q negative: rare bright samples at q = 1), and a
-        // negative variance here turns the budgets' search over, to the costliest pass
-        // (test_light_trace's spot fog, seed 7). The part not depending on q is at least 0.
+        // With several media, q >= `Q_PILOT` for each can still leave that line below 0, and a
+        // negative variance here scales the budgets' noise model negative: its search then
+        // takes the costliest pass (the spot fog's seed 7 did, at q = 0.03, before the clamp
+        // above). The part not depending on q is at least 0.
         variance = rest.max(0.0);
         for ((m, f), q) in media.iter().zip(&fits).zip(q) {
             config.q[*m] = q;
