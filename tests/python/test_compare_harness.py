@@ -438,7 +438,8 @@ def test_equal_time_scores_noise_across_seeds_and_against_halves():
     deviation 0.2 read a relative noise of 0.1 across seeds per pixel and 0.1 / 4 of 4x4 bins
     (white noise averages over 16 pixels), scaled by sqrt(wall / T); scored against two halves
     with noise 0.1 each, the halves' own noise is removed and a bias of 0.04 (2 %) shows."""
-    from equal_time import reference_of, scored, seed_noise
+    from equal_time import scored, seed_noise
+    from protocol import halves
 
     rng = np.random.default_rng(11)
     w = 128
@@ -447,7 +448,7 @@ def test_equal_time_scores_noise_across_seeds_and_against_halves():
     p, b = seed_noise(imgs, [40.0] * 8, 10.0)
     assert abs(p / 0.2 - 1.0) < 0.02 and abs(b / 0.05 - 1.0) < 0.05
     ha, hb = (2.0 + rng.normal(0.0, 0.1, (w, w, 3)) for _ in range(2))
-    ref = reference_of(ha, hb)
+    ref = halves(ha, hb)
     img = 2.04 + rng.normal(0.0, 0.2, (w, w, 3))
     p, b = scored(img, ref, 10.0, 10.0)
     assert abs(p - np.sqrt(0.1**2 + 0.02**2)) < 0.003

@@ -24,6 +24,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from compare import bin4, read_rgb  # noqa: E402
+from protocol import halves, scores  # noqa: E402
 from protocol_render import brume_cmd, run_timed  # noqa: E402
 
 
@@ -37,19 +38,11 @@ def seed_noise(images: list[np.ndarray], walls: list[float], budget: float) -> t
     return float(per_pixel * s), float(np.sqrt(np.mean(b.var(axis=0, ddof=1))) / m * s)
 
 
-def reference_of(a: np.ndarray, b: np.ndarray) -> dict:
-    """The halves' mean and its noise per metric, as protocol.reference() has them."""
-    return {"mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
-            "var_bin4": float(np.mean((bin4(a) - bin4(b)) ** 2) / 4)}
-
-
 def scored(img: np.ndarray, ref: dict, wall: float, budget: float) -> tuple[float, float]:
-    """Relative RMSE per pixel and 4x4 against `ref`, its noise removed, at the nominal budget."""
-    m = float(ref["mean"].mean())
-    mse = max(float(np.mean((img - ref["mean"]) ** 2)) - ref["var"], 0.0)
-    mse4 = max(float(np.mean((bin4(img) - bin4(ref["mean"])) ** 2)) - ref["var_bin4"], 0.0)
-    s = np.sqrt(wall / budget)
-    return float(np.sqrt(mse) / m * s), float(np.sqrt(mse4) / m * s)
+    """protocol.py's relative RMSE per pixel and 4x4, the reference's noise removed, at the
+    nominal budget."""
+    s = scores(img, ref, wall, budget)
+    return s["rel_rmse_nominal"], s["rel_rmse_bin4_nominal"]
 
 
 def main() -> None:
@@ -66,7 +59,7 @@ def main() -> None:
         label, _, rest = v.partition("=")
         binary, _, sets = rest.partition(":")
         variants.append((label, binary, [s for s in sets.split(",") if s]))
-    ref = reference_of(*(read_rgb(p) for p in a.reference_halves)) if a.reference_halves else None
+    ref = halves(*(read_rgb(p) for p in a.reference_halves)) if a.reference_halves else None
     seeds = [int(s) for s in a.seeds.split(",")]
     images = {label: [] for label, _, _ in variants}
     walls = {label: [] for label, _, _ in variants}

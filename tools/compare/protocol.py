@@ -147,6 +147,13 @@ def render_reference(source: str, seconds: float, peer: Peer | None, brume_ref, 
     return imgs, recs
 
 
+def halves(a: np.ndarray, b: np.ndarray) -> dict:
+    """A reference from two independent halves: their mean, and its noise per pixel and of 4x4
+    bins, E[(A - B)^2] / 4, which `scores` subtracts."""
+    return {"mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
+            "var_bin4": float(np.mean((bin4(a) - bin4(b)) ** 2) / 4)}
+
+
 def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_ref, files=None) -> dict:
     """The reference (mean of two halves) and its noise per metric, cached under its key."""
     folder = key_folder(work, "reference", key)
@@ -164,8 +171,7 @@ def reference(work: Path, key: dict, source: str, seconds: float, peer, brume_re
     a, b = (read_rgb(folder / n) for n in names)
     if nonfinite(a) + nonfinite(b):
         raise SystemExit(f"{folder}: the reference has NaN/inf pixels")
-    return {"key": key, "mean": 0.5 * (a + b), "var": float(np.mean((a - b) ** 2) / 4),
-            "var_bin4": float(np.mean((bin4(a) - bin4(b)) ** 2) / 4), "folder": str(folder), **rec}
+    return {"key": key, **halves(a, b), "folder": str(folder), **rec}
 
 
 def scores(img: np.ndarray, ref: dict, wall: float, budget: float) -> dict:
