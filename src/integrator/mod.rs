@@ -141,6 +141,7 @@ impl Integrator {
             q: self.q.clone(),
             forward_rays: self.forward_rays,
             camera_samples: self.camera_samples,
+            indirect_scale: self.indirect_scale,
         }
     }
 
@@ -156,6 +157,7 @@ impl Integrator {
         }
         self.forward_rays = c.forward_rays;
         self.camera_samples = c.camera_samples;
+        self.indirect_scale = c.indirect_scale;
         Ok(())
     }
 }

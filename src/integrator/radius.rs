@@ -134,6 +134,11 @@ impl Radii {
     }
 }
 
+/// The radius for scattered light that the automatic settings' Radius pilot measures, over the
+/// automatic radius (`auto::Tuner::choose_radius`): 3 footprints, the medium's most efficient
+/// radius on fog-cube ("Radius of the gathered part" below [`FOOTPRINT_RADII`]).
+pub const AUTO_INDIRECT_SCALE: f32 = 2.0;
+
 /// Pixels sampled (per side) to find the footprint of `auto_radius`.
 const FOOTPRINT_GRID: u32 = 24;
 /// `auto_radius` in pixel footprints. Measured at equal CPU time with next-event estimation

@@ -5,8 +5,14 @@ use super::PassConfig;
 
 /// A configuration as a choice reports it (`Film::auto_choice` reads it back).
 pub fn settings_of(c: &PassConfig) -> String {
+    let radius = if c.indirect_scale == 1.0 {
+        // As films recorded their choices before the radius was one of them.
+        String::new()
+    } else {
+        format!(", radius_indirect = {} x radius", c.indirect_scale)
+    };
     format!(
-        "q = {:?}, forward_rays = {}, camera_samples = {}",
+        "q = {:?}, forward_rays = {}, camera_samples = {}{radius}",
         c.q, c.forward_rays, c.camera_samples
     )
 }

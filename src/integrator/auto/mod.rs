@@ -26,6 +26,7 @@ mod choose;
 mod gain;
 pub mod model;
 mod plan;
+mod scattered_radius;
 mod work;
 
 use gain::Gain;
@@ -75,6 +76,9 @@ pub struct PassConfig {
     pub q: Vec<f32>,
     pub forward_rays: u64,
     pub camera_samples: u32,
+    /// The radius for scattered light over the pass's radius (`Integrator::radii`): 1, or
+    /// `radius::AUTO_INDIRECT_SCALE` where the Radius pilot chose it (`choose_radius`).
+    pub indirect_scale: f32,
 }
 
 /// What a pilot configuration measures.
@@ -91,6 +95,11 @@ enum Role {
     /// Both budgets times `BUDGET_FACTOR` (with both automatic): with Rays and Samples it
     /// splits the noise from the pilots' paired gains alone (`NoiseSplit::from_four`).
     Both,
+    /// The Base configuration, rendered before the others to compare the Radius pilot with.
+    Narrow,
+    /// The radius for scattered light at `radius::AUTO_INDIRECT_SCALE` times the radius (with
+    /// `radius` automatic and `radius_indirect` not set).
+    Radius,
 }
 
 /// Variance (with its standard error) and cost of a pilot configuration.
@@ -123,6 +132,8 @@ pub struct Tuner {
     resolution: (u32, u32),
     auto_rays: bool,
     auto_samples: bool,
+    /// Whether the radius for scattered light is chosen (its pilots are the first passes).
+    auto_radius: bool,
     /// Pilot passes recorded so far (always a prefix of the pilot passes).
     recorded: u64,
     /// Per role of the pass being recorded, the first pass's per-pixel totals, block means and
@@ -135,6 +146,8 @@ pub struct Tuner {
     /// The same per block of the pair's grid (`blocks`): the low-frequency noise.
     block_shares: Vec<Vec<f64>>,
     choice: Option<Choice>,
+    /// What `choose_radius` found, for the choice's report.
+    radius_report: Option<String>,
 }
 
 impl Tuner {
@@ -154,6 +167,13 @@ impl Tuner {
         if !(auto_q || auto_rays || auto_samples) {
             return None;
         }
+        // A second radius for scattered light is measured where the pilots run anyway and
+        // outside the film (automatic budgets: a film pass at another radius would blur the
+        // image by a radius it did not choose), the radius is automatic and the scene gives no
+        // second radius of its own.
+        let auto_radius = (auto_rays || auto_samples)
+            && desc.radius.value().is_none()
+            && desc.radius_indirect.is_none();
         // Pilots outside the film (automatic budgets) sample with fewer forward rays.
         let mut pilot = base.clone();
         if auto_rays {
@@ -161,7 +181,7 @@ impl Tuner {
             pilot.forward_rays = (base.forward_rays / shrink).max(1);
         }
         let budgets = (auto_rays, auto_samples);
-        let (pilots, passes) = plan::plan(&pilot, media, auto_q, budgets, Q_PILOT);
+        let (pilots, passes) = plan::plan(&pilot, media, (auto_q, auto_radius), budgets, Q_PILOT);
         let roles = pilots.len();
         Some(Self {
             base,
@@ -170,6 +190,7 @@ impl Tuner {
             resolution,
             auto_rays,
             auto_samples,
+            auto_radius,
             recorded: 0,
             first: Vec::new(),
             measures: vec![
@@ -183,6 +204,7 @@ impl Tuner {
             shares: vec![Vec::new(); roles],
             block_shares: vec![Vec::new(); roles],
             choice: None,
+            radius_report: None,
         })
     }
 
@@ -286,6 +308,9 @@ impl Tuner {
             }
         }
         self.recorded += 1;
+        if self.auto_radius && self.recorded == scattered_radius::PASSES * REPEATS {
+            self.choose_radius();
+        }
         if self.recorded == self.pilot_passes() {
             self.choice = Some(self.choose());
         }
@@ -376,21 +401,11 @@ impl Tuner {
 
     /// The Base pilot's block variance per pass.
     fn block_variance(&self) -> Option<f64> {
-        let b = self.pilots.iter().position(|(p, _)| *p == Role::Base)?;
-        Some(self.block_shares.get(b)?.iter().sum())
+        self.block_variance_of(Role::Base)
     }
 
     fn gain_in(&self, shares: &[Vec<f64>], role: Role) -> Option<Gain> {
-        let (base, other) = (
-            self.shares_of(shares, Role::Base)?,
-            self.shares_of(shares, role)?,
-        );
-        // A pilot pair whose two passes agree in every pixel (both saw no light: a rare light
-        // missed twice) measured nothing, not a variance of zero.
-        if other.iter().all(|d| *d == 0.0) {
-            return Some(Gain::uniform(0.0, 0.0));
-        }
-        Some(Gain::paired(base, other))
+        self.gain_between(shares, Role::Base, role)
     }
 
     /// Pilot `role`'s per-pixel (or per-block) shares among `shares`.
@@ -440,11 +455,16 @@ impl Tuner {
         };
         for ((role, c), m) in self.pilots.iter().zip(&self.measures) {
             report.push(format!(
-                "pilot {role:?} (q {:?}, forward rays {}, camera paths {}): variance per pass \
+                "pilot {role:?} (q {:?}, forward rays {}, camera paths {}{}): variance per pass \
                  {:.4e} +- {:.1e}, cost {:.4e} s",
                 c.q,
                 c.forward_rays,
                 c.camera_samples,
+                if c.indirect_scale == 1.0 {
+                    String::new()
+                } else {
+                    format!(", radius for scattered light x {}", c.indirect_scale)
+                },
                 m.variance,
                 m.se,
                 m.work.cost()
@@ -455,6 +475,7 @@ impl Tuner {
         if self.auto_rays || self.auto_samples {
             self.choose_budgets(&mut config, b, variance / b.variance, cost, &mut report);
         }
+        report.extend(self.radius_report.iter().cloned());
         report.insert(
             0,
             format!(

@@ -5,10 +5,11 @@
 //! (Base, Rays, Samples, Both) are nested in one pass (`integrator::nest`): the pass of the
 //! most camera paths and forward rays, whose first paths and rays are the others' passes. A
 //! medium's q pilot changes the camera paths' volumes, not their number, so it stays a pass of
-//! its own.
+//! its own, as does the Radius pilot (its gather structure's bounds are larger).
 
 use super::{BUDGET_FACTOR, PILOT_STRIDE, PassConfig, Role, Tuner};
 use crate::integrator::nest::{Nest, Variant};
+use crate::integrator::radius::AUTO_INDIRECT_SCALE;
 
 /// One pilot configuration rendered (twice: `REPEATS`), and the roles it measures.
 #[derive(Clone, Debug)]
@@ -23,11 +24,12 @@ pub struct PilotPass {
 
 /// The roles a tuner measures, in the order its reports give them, and the passes that
 /// measure them. `pilot` is the Base configuration, `media` the scene's media, `auto_q` whether
-/// their q is automatic, and `q_pilot` the q of a medium's pilot.
+/// their q is automatic, `auto_radius` whether the radius for scattered light is, and `q_pilot`
+/// the q of a medium's pilot.
 pub fn plan(
     pilot: &PassConfig,
     media: usize,
-    auto_q: bool,
+    (auto_q, auto_radius): (bool, bool),
     (auto_rays, auto_samples): (bool, bool),
     q_pilot: f32,
 ) -> (Vec<(Role, PassConfig)>, Vec<PilotPass>) {
@@ -56,6 +58,26 @@ pub fn plan(
             nest: None,
         }),
     );
+    if auto_radius {
+        // First, so that every later pilot samples at the radius these two choose
+        // (`Tuner::choose_radius`).
+        let mut wide = pilot.clone();
+        wide.indirect_scale = AUTO_INDIRECT_SCALE;
+        for (i, (role, c)) in [(Role::Narrow, pilot.clone()), (Role::Radius, wide)]
+            .into_iter()
+            .enumerate()
+        {
+            passes.insert(
+                i,
+                PilotPass {
+                    config: c.clone(),
+                    roles: vec![(roles.len(), None)],
+                    nest: None,
+                },
+            );
+            roles.push((role, c));
+        }
+    }
     (roles, passes)
 }
 

@@ -16,6 +16,7 @@ fn tuner(desc: IntegratorDesc) -> Tuner {
         q: vec![1.0],
         forward_rays: 50_000,
         camera_samples: 1,
+        indirect_scale: 1.0,
     };
     Tuner::new(&desc, 1, base, (64, 64)).expect("something is automatic")
 }
@@ -128,8 +129,8 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
     feed(&mut t, |_| 1.0);
     let first = &t.choice().expect("chosen").report[0];
     assert!(
-        first.contains("2 pilot passes rendered before the film's first pass and NOT in the film")
-            && first.contains("a render of N passes traces N + 2")
+        first.contains("6 pilot passes rendered before the film's first pass and NOT in the film")
+            && first.contains("a render of N passes traces N + 6")
             && first.contains("nested"),
         "{first}"
     );
@@ -153,9 +154,10 @@ fn pilots_outside_the_film_sample_a_lattice_with_fewer_rays() {
     assert!(!t.pilots_join_film());
     let base = t.role_config(Role::Base).expect("the base pilot").clone();
     assert_eq!(base.forward_rays, 50_000 / 4);
-    // One pass nests the four budget pilots: the largest (k s, k n).
-    assert_eq!(t.pilot_passes(), REPEATS);
-    let nest = t.config(0).expect("the nested pilot");
+    // The Narrow and Radius pilots, then one pass that nests the four budget pilots: the
+    // largest (k s, k n).
+    assert_eq!(t.pilot_passes(), 3 * REPEATS);
+    let nest = t.config(2 * REPEATS).expect("the nested pilot");
     assert_eq!((nest.forward_rays, nest.camera_samples), (50_000, 4));
     for pass in 0..t.pilot_passes() {
         assert_eq!(t.pixel_stride(pass), PILOT_STRIDE, "pilot pass {pass}");
@@ -201,9 +203,10 @@ fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
 fn pilots_outside_the_film_share_their_random_numbers() {
     let t = tuner(IntegratorDesc::default());
     let p = t.pilot_passes();
-    // The nested budget pilots and the medium's; film passes start after a pair per role.
-    assert_eq!(p, 4);
-    assert_eq!(t.film_offset(), 10);
+    // The Narrow and Radius pilots, the nested budget pilots and the medium's; film passes
+    // start after a pair per role (Base, Rays, Samples, Both, the medium's, Narrow, Radius).
+    assert_eq!(p, 8);
+    assert_eq!(t.film_offset(), 14);
     for pass in 0..p {
         assert_eq!(t.random_pass(pass), pass % REPEATS, "pilot pass {pass}");
     }
@@ -216,15 +219,21 @@ fn pilots_outside_the_film_share_their_random_numbers() {
     }
 }
 
-/// A tuner with every setting automatic for a 256 x 256 image (the pixel count sets how well a
-/// pilot knows its variance).
+/// A tuner with q and the budgets automatic for a 256 x 256 image (the pixel count sets how well
+/// a pilot knows its variance). The radius is set, so that no Radius pilot runs: these tests
+/// are about the q and budget pilots, and their own noise is one stream over the pilot passes.
 fn auto_tuner_256() -> Tuner {
     let base = PassConfig {
         q: vec![1.0],
         forward_rays: 50_000,
         camera_samples: 1,
+        indirect_scale: 1.0,
     };
-    Tuner::new(&IntegratorDesc::default(), 1, base, (256, 256)).expect("automatic")
+    let desc = IntegratorDesc {
+        radius: Setting::Value(0.01),
+        ..IntegratorDesc::default()
+    };
+    Tuner::new(&desc, 1, base, (256, 256)).expect("automatic")
 }
 
 /// Feeds every pilot pass of `t` (a 256 x 256 image): per pixel a component of variance `shared`

@@ -39,6 +39,7 @@ fn nested_estimates_match_their_own_passes(file: &str, sets: &[&str]) {
         q: q.clone(),
         forward_rays: rays,
         camera_samples: paths,
+        indirect_scale: 1.0,
     };
     let v = |sub_paths, sub_rays| Variant {
         sub_paths,

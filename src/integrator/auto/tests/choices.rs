@@ -1,7 +1,8 @@
 //! The choice's rules on hand-made pilots: the noise split's bounded terms, the q fit's sign,
-//! and budget gains resolved in the bulk of pixels.
+//! budget gains resolved in the bulk of pixels, and the radius for scattered light.
 
 use super::*;
+use crate::integrator::radius::AUTO_INDIRECT_SCALE;
 
 /// An unresolved term counts as 0 only where the pilots bound it (`choose::BOUND_SHARE`): the
 /// two cases that set the rule, height-fog's seed 6 and fog-room-laser's seed 2.
@@ -28,6 +29,7 @@ fn choice_with_q_pilots(media: usize, v_pilot: f64) -> Choice {
         q: vec![1.0; media],
         forward_rays: 50_000,
         camera_samples: 1,
+        indirect_scale: 1.0,
     };
     let desc = IntegratorDesc::default();
     let mut t = Tuner::new(&desc, media, base, (64, 64)).expect("automatic");
@@ -144,4 +146,52 @@ fn a_gain_hidden_by_a_few_bright_pixels_is_resolved_by_the_bulk() {
         g.resolved_or_bulk().is_some() && g.gain > Z_SIGNIFICANT * g.se,
         "{g:?}"
     );
+}
+
+/// The Radius pilot's choice (`choose_radius`), on pilots whose variance is `29.2 (0.25 + 0.75
+/// / camera paths)` times `k` at the larger radius for scattered light, and whose work does not
+/// depend on the radius: the criterion's ratio is then about k^2 (per pixel and per block).
+fn radius_choice(desc: IntegratorDesc, k: f64) -> Choice {
+    let base = PassConfig {
+        q: vec![1.0],
+        forward_rays: 50_000,
+        camera_samples: 1,
+        indirect_scale: 1.0,
+    };
+    let mut t = Tuner::new(&desc, 1, base, (64, 64)).expect("automatic");
+    feed(&mut t, |c| {
+        let radius = if c.indirect_scale == 1.0 { 1.0 } else { k };
+        29.2 * radius * (0.25 + 0.75 / c.camera_samples as f64)
+    });
+    t.choice().expect("chosen after the pilots").clone()
+}
+
+/// A larger radius is taken only when its pilot's gain is resolved and large (ratio about 0.25
+/// against `RADIUS_GAIN_NEEDED` = 0.5): a ratio of about 0.64, or a larger variance, keeps the
+/// radius; and a scene that sets either radius has no Radius pilot.
+#[test]
+fn the_radius_for_scattered_light_doubles_only_on_a_large_resolved_gain() {
+    let scale = |c: &Choice| c.config.indirect_scale;
+    let large = radius_choice(IntegratorDesc::default(), 0.5);
+    assert_eq!(scale(&large), AUTO_INDIRECT_SCALE, "{:?}", large.report);
+    assert!(settings_of(&large.config).ends_with("radius_indirect = 2 x radius"));
+    let small = radius_choice(IntegratorDesc::default(), 0.8);
+    assert_eq!(scale(&small), 1.0, "{:?}", small.report);
+    assert_eq!(scale(&radius_choice(IntegratorDesc::default(), 1.5)), 1.0);
+    let set = IntegratorDesc {
+        radius: Setting::Value(0.01),
+        ..IntegratorDesc::default()
+    };
+    let fixed = radius_choice(set, 0.5);
+    assert_eq!(scale(&fixed), 1.0);
+    assert!(
+        !fixed.report.iter().any(|l| l.contains("Radius")),
+        "{:?}",
+        fixed.report
+    );
+    let second = IntegratorDesc {
+        radius_indirect: Some(0.02),
+        ..IntegratorDesc::default()
+    };
+    assert_eq!(scale(&radius_choice(second, 0.5)), 1.0);
 }
