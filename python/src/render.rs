@@ -294,6 +294,9 @@ fn run(
         "forward_rays": i.forward_rays,
         "camera_samples": i.camera_samples,
         "radius": i.radius.r0,
+        // The radius for scattered light (the pilots may choose 2x): pinning q and the
+        // budgets without it would render at the single radius.
+        "radius_indirect": i.radius.r0 * i.indirect_scale,
     });
     Ok(Rendered {
         failure: renderer.over_budget().map(|e| e.to_string()),

@@ -194,7 +194,7 @@ impl RenderResult {
         self.item(py, "sensors")
     }
 
-    /// How the passes sampled: seed, first_pass, passes, the resolved q, forward_rays, camera_samples, radius, and `auto` (what automatic settings chose, or None).
+    /// How the passes sampled: seed, first_pass, passes, the resolved q, forward_rays, camera_samples, radius, radius_indirect, and `auto` (what automatic settings chose, or None).
     #[getter]
     fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.item(py, "settings")

@@ -100,6 +100,11 @@ def test_with_set_sweeps_and_the_result_holds_its_arrays(small):
     assert r.stderr.shape == r.spectral.shape and r.rgb.shape == (12, 24, 3)
     assert r.wavelengths.shape == (32,) and r.passes == 2 and r.settings["seed"] == 1
     assert r.settings["forward_rays"] == 2000
+    # No radius for scattered light set or chosen: the radius.
+    assert r.settings["radius_indirect"] == r.settings["radius"]
+    twice = grey.with_set({"integrator.radius_indirect": 2 * r.settings["radius"]})
+    assert twice.render(passes=1, seed=1, progress=False).settings["radius_indirect"] == pytest.approx(
+        2 * r.settings["radius"], rel=1e-6)
     assert np.isfinite(r.luminance).all() and r.luminance.mean() > 0
     # The layers add up to the image.
     total = r.layers["medium"] + r.layers["surface"]

@@ -356,6 +356,60 @@ def test_budget_grid_recovers_one_pass_variance_and_time():
     assert 0.0 < out["pixel"]["se"] < 0.1 * out["pixel"]["efficiency"]
 
 
+def test_budget_grid_pins_the_radius_for_scattered_light():
+    """A configuration pins the pilots' radius for scattered light (its multiple of the radius)
+    with q and the budgets: pinned without it, a render would gather at the single radius and
+    the grid would measure a configuration the automatic settings never render. Grids saved
+    before the multiple was recorded keep their keys."""
+    import budget_grid
+
+    cfg = {"q": [0.36], "forward_rays": 40000, "camera_samples": 1, "indirect_scale": 2.0, "radius": 0.0117}
+    pin = budget_grid.pinned(cfg)
+    assert pin["integrator.radius_indirect"] == pytest.approx(0.0234)
+    assert pin["integrator.forward_rays"] == 40000 and pin["integrator.radius_schedule"] == "fixed"
+    assert budget_grid.key(cfg) == "q=0.36 rays=40000 paths=1 indirect=2x"
+    old = {"q": [0.36], "forward_rays": 40000, "camera_samples": 1}
+    assert budget_grid.key(old) == "q=0.36 rays=40000 paths=1"
+
+
+def test_bias_is_recovered_beside_both_noises():
+    """tools/compare/bias.py: renders with a known bias (a 2 % ramp, so its squared RMS is known
+    exactly) and white noise larger than it, against reference halves with noise of their own:
+    the squared bias comes back within a few of its standard errors, per pixel and binned, and
+    an unbiased pair reads zero within its standard error."""
+    import bias
+
+    rng = np.random.default_rng(5)
+    h, w = 64, 96
+    truth = np.full((h, w, 3), 2.0)
+    ramp = np.linspace(-1.0, 1.0, w)[None, :, None] * 0.04 * np.ones((h, 1, 3))
+    noisy = lambda x, sd: x + rng.normal(0.0, sd, x.shape)  # noqa: E731
+    a, b = noisy(truth + ramp, 0.1), noisy(truth + ramp, 0.1)
+    r1, r2 = noisy(truth, 0.06), noisy(truth, 0.06)
+    want = float(np.mean(ramp**2)) / 4.0  # relative to the mean 2, squared
+    got = bias.squared_bias(a, b, r1, r2)
+    se = bias.bootstrap_se(a, b, r1, r2)
+    assert se["pixel"] > 0 and se["binned"] > 0
+    assert abs(got["pixel"]["bias2"] - want) < 4 * se["pixel"]
+    assert abs(got["pixel"]["bias2"] - want) < 0.1 * want
+    assert abs(got["binned"]["bias2"] - want) < 4 * se["binned"]
+    # the noise terms are what was drawn: (0.1 / 2)^2 / 2 and (0.06 / 2)^2 / 2 per pixel
+    assert abs(got["pixel"]["noise"] / (0.05**2 / 2) - 1) < 0.05
+    assert abs(got["pixel"]["reference_noise"] / (0.03**2 / 2) - 1) < 0.05
+    a0, b0 = noisy(truth, 0.1), noisy(truth, 0.1)
+    zero = bias.squared_bias(a0, b0, r1, r2)
+    assert abs(zero["pixel"]["bias2"]) < 4 * bias.bootstrap_se(a0, b0, r1, r2)["pixel"]
+    # Paired: a second configuration rendered with the same seeds shares most of each seed's
+    # noise (here all but 0.02); the difference of the biases (the ramp) comes back sharper
+    # than against the reference, and the shared noise is not counted twice.
+    c, d = a - ramp + rng.normal(0.0, 0.02, a.shape), b - ramp + rng.normal(0.0, 0.02, b.shape)
+    diff = bias.paired_difference(a, b, c, d)
+    se_p = bias.bootstrap_se(a, b, c, d, paired=True)
+    assert abs(diff["pixel"]["bias2"] - want) < 4 * se_p["pixel"]
+    assert se_p["pixel"] < 0.7 * se["pixel"]
+    assert abs(diff["pixel"]["noise"] / (0.02**2 / 2 / 4) - 1) < 0.05
+
+
 def test_lattice_bins_extrapolate_the_blocks_to_the_film_bins():
     """tools/compare/lattice_bins.py on images of known structure: white noise of variance 1
     per pixel plus a value shared by each 4x4 bin (variance 1/2). The film's bins hold

@@ -5,8 +5,9 @@ of the best hand-tuned efficiency on every protocol scene. This measures it for 
 
 1. The automatic choice for each seed (`--seeds`): one pass rendered with the scene's defaults,
    its resolved `q`, `forward_rays` and `camera_samples` read from the result.
-2. A grid of fixed budgets (`--rays` x `--paths`, q the median of the seeds' choices) and every
-   seed's own choice, each rendered in chunks of consecutive passes, m and 2m in turn
+2. A grid of fixed budgets (`--rays` x `--paths` x `--scales`, q the median of the seeds'
+   choices, the radius for scattered light the seeds' median multiple of the radius unless
+   `--scales` names them) and every seed's own choice, each rendered in chunks of consecutive passes, m and 2m in turn
    (`pass_range`, one process, one seed, m so that a chunk takes at least `--chunk-seconds`):
    K independent chunk means per configuration, the radius fixed at its first pass's. The configurations are rendered in rounds (a few chunks of every one, then
    again), so a drift of the machine's speed during the run is charged to all of them alike.
@@ -98,6 +99,9 @@ def choice(scene, seed: int) -> dict:
         "q": [float(x) for x in (q if isinstance(q, (list, tuple)) else [q])],
         "forward_rays": int(s["forward_rays"]),
         "camera_samples": int(s["camera_samples"]),
+        # the radius for scattered light over the radius (the pilots choose 1 or 2)
+        "indirect_scale": round(float(s["radius_indirect"]) / float(s["radius"]), 6),
+        "radius": float(s["radius"]),
     }
 
 
@@ -107,6 +111,8 @@ def pinned(cfg: dict) -> dict:
         "integrator.q": cfg["q"][0] if len(cfg["q"]) == 1 else cfg["q"],
         "integrator.forward_rays": cfg["forward_rays"],
         "integrator.camera_samples": cfg["camera_samples"],
+        # the pilots' radius for scattered light, or the grid's multiple of the radius
+        "integrator.radius_indirect": cfg["indirect_scale"] * cfg["radius"],
         # the radius of every pass the first one's: a long grid would otherwise shrink it
         # past the consistent schedule's first passes, and charge the long configurations
         "integrator.radius_schedule": "fixed",
@@ -115,7 +121,9 @@ def pinned(cfg: dict) -> dict:
 
 def key(cfg: dict) -> str:
     qs = "/".join(f"{q:.3g}" for q in cfg["q"])
-    return f"q={qs} rays={cfg['forward_rays']} paths={cfg['camera_samples']}"
+    k = f"q={qs} rays={cfg['forward_rays']} paths={cfg['camera_samples']}"
+    # grids measured before the radius for scattered light was pinned have no scale
+    return k + (f" indirect={cfg['indirect_scale']:g}x" if "indirect_scale" in cfg else "")
 
 
 def timed_wall(fn) -> float:
@@ -172,7 +180,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", default="1,2,3,4,5")
     ap.add_argument("--rays", default="12500,25000,50000,100000,200000")
     ap.add_argument("--paths", default="1,2,4,8")
-    ap.add_argument("--configs", default="", help="Q:RAYS:PATHS,... in place of the grid (Q per medium as Q1/Q2)")
+    ap.add_argument("--scales", default="", help="radii for scattered light over the radius, as 1,2 (default: the seeds' choices')")
+    ap.add_argument("--configs", default="", help="Q:RAYS:PATHS[:SCALE],... in place of the grid (Q per medium as Q1/Q2; SCALE the radius for scattered light over the radius, default the seeds' median)")
     ap.add_argument("--seconds", type=float, default=10.0, help="target seconds per configuration")
     ap.add_argument("--chunk-seconds", type=float, default=0.8, help="least seconds of the smaller chunk")
     ap.add_argument("--min-chunks", type=int, default=8)
@@ -208,19 +217,26 @@ def main(argv=None) -> int:
 
     qs = [c["q"] for c in choices.values()]
     q_med = [float(np.median([q[i] for q in qs])) for i in range(len(qs[0]))]
+    # The radius is the scene's (automatic: the same for every seed); the grid's radius for
+    # scattered light is the seeds' median choice unless --scales names the multiples.
+    radius = choices[seed0]["radius"]
+    scale_med = float(np.median([c["indirect_scale"] for c in choices.values()]))
+    scales = [float(x) for x in args.scales.split(",")] if args.scales else [scale_med]
     configs = {}
     if args.configs:
         # Named configurations in place of the grid (a confirmation run of a grid's best ones,
         # on another --grid-seed so that the best is not the one its own noise picked).
         for c in args.configs.split(","):
-            q, n, s = c.split(":")
-            cfg = {"q": [float(x) for x in q.split("/")], "forward_rays": int(n), "camera_samples": int(s)}
+            q, n, s, *sc = c.split(":")
+            cfg = {"q": [float(x) for x in q.split("/")], "forward_rays": int(n), "camera_samples": int(s),
+                   "indirect_scale": float(sc[0]) if sc else scale_med, "radius": radius}
             configs[key(cfg)] = cfg
     else:
-        for n in (int(x) for x in args.rays.split(",")):
-            for s in (int(x) for x in args.paths.split(",")):
-                cfg = {"q": q_med, "forward_rays": n, "camera_samples": s}
-                configs[key(cfg)] = cfg
+        for sc in scales:
+            for n in (int(x) for x in args.rays.split(",")):
+                for s in (int(x) for x in args.paths.split(",")):
+                    cfg = {"q": q_med, "forward_rays": n, "camera_samples": s, "indirect_scale": sc, "radius": radius}
+                    configs[key(cfg)] = cfg
     for c in choices.values():
         configs.setdefault(key(c), dict(c))
 
