@@ -94,7 +94,7 @@ impl Integrator {
                 r0,
                 shrink: desc.shrink(),
             },
-            indirect_scale: desc.radius_indirect.map_or(1.0, |ri| ri / r0),
+            indirect_scale: desc.radius_indirect_value().map_or(1.0, |ri| ri / r0),
             forward_rays: desc.forward_rays.value().unwrap_or(defaults::FORWARD_RAYS),
             camera_samples: desc
                 .camera_samples

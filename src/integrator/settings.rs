@@ -140,9 +140,12 @@ pub struct IntegratorDesc {
     /// the camera's first surface hits (`radius::auto_radius`).
     pub radius: Setting<f32>,
     /// Radius in metres for light that has scattered at least once (`radius::Radii`); absent:
-    /// `radius`. Follows `radius`'s progressive schedule (the ratio stays fixed).
+    /// `radius`. Follows `radius`'s progressive schedule (the ratio stays fixed). `"auto"`:
+    /// the radius or twice it, chosen by the automatic settings' pilots (`auto`), which see
+    /// noise and not blur; opt-in because on spot-lit smoke and height fog the larger radius's
+    /// blur is the error floor of a one-minute render (docs/performance.md).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub radius_indirect: Option<f32>,
+    pub radius_indirect: Option<Setting<f32>>,
     /// Light tracing to the camera for the direct light of lights that are not next-event
     /// estimated, where the camera sees it on a surface (`camera_splat`): sharp and low-noise
     /// small spots (a laser's). Off: the paper's surface spheres gather it. Absent: on when
@@ -235,6 +238,16 @@ impl Default for IntegratorDesc {
 }
 
 impl IntegratorDesc {
+    /// The radius for scattered light the scene sets in metres (None: absent or `"auto"`).
+    pub fn radius_indirect_value(&self) -> Option<f32> {
+        self.radius_indirect.and_then(|r| r.value())
+    }
+
+    /// Whether the pilots choose the radius for scattered light (`radius_indirect = "auto"`).
+    pub fn radius_indirect_auto(&self) -> bool {
+        self.radius_indirect.is_some_and(|r| r.is_auto())
+    }
+
     /// The radius's schedule: `alpha` below 1 is Hachisuka & Jensen's progressive rule;
     /// otherwise `radius_schedule`, consistent when absent (`radius` module comment).
     pub fn shrink(&self) -> Shrink {
@@ -319,12 +332,12 @@ impl IntegratorDesc {
                 format!("must be a finite number > 0 or \"auto\", got {r}"),
             );
         }
-        if let Some(r) = self.radius_indirect
+        if let Some(r) = self.radius_indirect_value()
             && !(r.is_finite() && r > 0.0)
         {
             fail(
                 "integrator.radius_indirect",
-                format!("must be a finite number > 0, got {r}"),
+                format!("must be a finite number > 0 or \"auto\", got {r}"),
             );
         }
         self.check_schedule(&mut fail);

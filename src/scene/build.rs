@@ -69,7 +69,7 @@ pub fn build_with_warnings(scene: &LoadedScene) -> Result<(Scene, Vec<SceneWarni
     };
     // Volumes reach as far as the larger of the two radii (`integrator::Radii`).
     let mut radius_key = "integrator.radius";
-    if let Some(ri) = d.integrator.radius_indirect
+    if let Some(ri) = d.integrator.radius_indirect_value()
         && ri.is_finite()
         && ri > b.radius
     {

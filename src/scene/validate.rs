@@ -26,7 +26,7 @@ pub fn validate(scene: &LoadedScene) -> Vec<Problem> {
     if let Some(r) = d.integrator.radius.value() {
         c.within_geometry("integrator.radius", r);
     }
-    if let Some(r) = d.integrator.radius_indirect {
+    if let Some(r) = d.integrator.radius_indirect_value() {
         c.within_geometry("integrator.radius_indirect", r);
     }
     for (name, s) in &d.spectra {

@@ -98,7 +98,7 @@ enum Role {
     /// The Base configuration, rendered before the others to compare the Radius pilot with.
     Narrow,
     /// The radius for scattered light at `radius::AUTO_INDIRECT_SCALE` times the radius (with
-    /// `radius` automatic and `radius_indirect` not set).
+    /// `radius` automatic and `radius_indirect = "auto"`).
     Radius,
 }
 
@@ -167,13 +167,13 @@ impl Tuner {
         if !(auto_q || auto_rays || auto_samples) {
             return None;
         }
-        // A second radius for scattered light is measured where the pilots run anyway and
-        // outside the film (automatic budgets: a film pass at another radius would blur the
-        // image by a radius it did not choose), the radius is automatic and the scene gives no
-        // second radius of its own.
+        // A second radius for scattered light is measured where the scene asks for it
+        // (`radius_indirect = "auto"`: the pilots see noise, not blur), the pilots run anyway
+        // and outside the film (automatic budgets: a film pass at another radius would blur the
+        // image by a radius it did not choose) and the radius is automatic.
         let auto_radius = (auto_rays || auto_samples)
             && desc.radius.value().is_none()
-            && desc.radius_indirect.is_none();
+            && desc.radius_indirect_auto();
         // Pilots outside the film (automatic budgets) sample with fewer forward rays.
         let mut pilot = base.clone();
         if auto_rays {

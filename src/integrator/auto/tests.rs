@@ -129,8 +129,8 @@ fn the_report_says_what_a_short_render_does_with_its_pilots() {
     feed(&mut t, |_| 1.0);
     let first = &t.choice().expect("chosen").report[0];
     assert!(
-        first.contains("6 pilot passes rendered before the film's first pass and NOT in the film")
-            && first.contains("a render of N passes traces N + 6")
+        first.contains("2 pilot passes rendered before the film's first pass and NOT in the film")
+            && first.contains("a render of N passes traces N + 2")
             && first.contains("nested"),
         "{first}"
     );
@@ -154,10 +154,10 @@ fn pilots_outside_the_film_sample_a_lattice_with_fewer_rays() {
     assert!(!t.pilots_join_film());
     let base = t.role_config(Role::Base).expect("the base pilot").clone();
     assert_eq!(base.forward_rays, 50_000 / 4);
-    // The Narrow and Radius pilots, then one pass that nests the four budget pilots: the
-    // largest (k s, k n).
-    assert_eq!(t.pilot_passes(), 3 * REPEATS);
-    let nest = t.config(2 * REPEATS).expect("the nested pilot");
+    // One pass nests the four budget pilots: the largest (k s, k n). (No Narrow and Radius
+    // pilots: the radius for scattered light is not asked for.)
+    assert_eq!(t.pilot_passes(), REPEATS);
+    let nest = t.config(0).expect("the nested pilot");
     assert_eq!((nest.forward_rays, nest.camera_samples), (50_000, 4));
     for pass in 0..t.pilot_passes() {
         assert_eq!(t.pixel_stride(pass), PILOT_STRIDE, "pilot pass {pass}");
@@ -201,10 +201,17 @@ fn film_pilots_trace_every_pixel_at_the_scene_budgets() {
 /// film's passes and film pilots draw their own.
 #[test]
 fn pilots_outside_the_film_share_their_random_numbers() {
+    // The nested budget pilots and the medium's; film passes start after a pair per role
+    // (Base, Rays, Samples, Both, the medium's).
     let t = tuner(IntegratorDesc::default());
+    assert_eq!((t.pilot_passes(), t.film_offset()), (4, 10));
+    // With the radius for scattered light asked for, the Narrow and Radius pilots first: two
+    // more pairs.
+    let t = tuner(IntegratorDesc {
+        radius_indirect: Some(Setting::Auto),
+        ..IntegratorDesc::default()
+    });
     let p = t.pilot_passes();
-    // The Narrow and Radius pilots, the nested budget pilots and the medium's; film passes
-    // start after a pair per role (Base, Rays, Samples, Both, the medium's, Narrow, Radius).
     assert_eq!(p, 8);
     assert_eq!(t.film_offset(), 14);
     for pass in 0..p {

@@ -168,19 +168,31 @@ fn radius_choice(desc: IntegratorDesc, k: f64) -> Choice {
 
 /// A larger radius is taken only when its pilot's gain is resolved and large (ratio about 0.25
 /// against `RADIUS_GAIN_NEEDED` = 0.5): a ratio of about 0.64, or a larger variance, keeps the
-/// radius; and a scene that sets either radius has no Radius pilot.
+/// radius; a scene that sets either radius has no Radius pilot, and neither has one that
+/// does not ask for it (`radius_indirect = "auto"` is opt-in).
 #[test]
 fn the_radius_for_scattered_light_doubles_only_on_a_large_resolved_gain() {
     let scale = |c: &Choice| c.config.indirect_scale;
-    let large = radius_choice(IntegratorDesc::default(), 0.5);
+    let opt_in = || IntegratorDesc {
+        radius_indirect: Some(Setting::Auto),
+        ..IntegratorDesc::default()
+    };
+    let large = radius_choice(opt_in(), 0.5);
     assert_eq!(scale(&large), AUTO_INDIRECT_SCALE, "{:?}", large.report);
     assert!(settings_of(&large.config).ends_with("radius_indirect = 2 x radius"));
-    let small = radius_choice(IntegratorDesc::default(), 0.8);
+    let small = radius_choice(opt_in(), 0.8);
     assert_eq!(scale(&small), 1.0, "{:?}", small.report);
-    assert_eq!(scale(&radius_choice(IntegratorDesc::default(), 1.5)), 1.0);
+    assert_eq!(scale(&radius_choice(opt_in(), 1.5)), 1.0);
+    let by_default = radius_choice(IntegratorDesc::default(), 0.5);
+    assert_eq!(scale(&by_default), 1.0);
+    assert!(
+        !by_default.report.iter().any(|l| l.contains("Radius")),
+        "{:?}",
+        by_default.report
+    );
     let set = IntegratorDesc {
         radius: Setting::Value(0.01),
-        ..IntegratorDesc::default()
+        ..opt_in()
     };
     let fixed = radius_choice(set, 0.5);
     assert_eq!(scale(&fixed), 1.0);
@@ -190,7 +202,7 @@ fn the_radius_for_scattered_light_doubles_only_on_a_large_resolved_gain() {
         fixed.report
     );
     let second = IntegratorDesc {
-        radius_indirect: Some(0.02),
+        radius_indirect: Some(Setting::Value(0.02)),
         ..IntegratorDesc::default()
     };
     assert_eq!(scale(&radius_choice(second, 0.5)), 1.0);
