@@ -662,3 +662,33 @@ fn bad_spectral_lines_name_file_line_and_key() {
     );
     assert!(e.contains("spectral lines"), "{e}");
 }
+
+/// `radius_indirect = "auto"` asks the pilots for the radius for scattered light; they run only
+/// beside an automatic radius and automatic budgets, so asked for otherwise it is refused at
+/// its line rather than silently rendered at the radius. Other strings are refused too.
+#[test]
+fn an_automatic_radius_for_scattered_light_without_its_pilots_is_rejected() {
+    let auto = "q = 0.5\nradius_indirect = \"auto\"";
+    assert!(
+        load_str(
+            &GOOD.replace("q = 0.5", auto),
+            Path::new("scenes/test.toml"),
+            &[]
+        )
+        .is_ok()
+    );
+    let e = fails(
+        &GOOD.replace(
+            "q = 0.5",
+            "q = 0.5\nradius = 0.01\nradius_indirect = \"auto\"",
+        ),
+        &[],
+    );
+    assert_at(&e, 9, "integrator.radius_indirect");
+    assert!(e.to_string().contains("needs radius = \"auto\""), "{e}");
+    let pinned = "q = 0.5\nradius_indirect = \"auto\"\nforward_rays = 1000\ncamera_samples = 1";
+    let e = fails(&GOOD.replace("q = 0.5", pinned), &[]);
+    assert_at(&e, 8, "integrator.radius_indirect");
+    let e = fails(GOOD, &["integrator.radius_indirect=\"twice\""]);
+    assert!(e.to_string().contains("radius_indirect"), "{e}");
+}

@@ -340,6 +340,19 @@ impl IntegratorDesc {
                 format!("must be a finite number > 0 or \"auto\", got {r}"),
             );
         }
+        // The pilots choose it only beside an automatic radius and automatic budgets
+        // (`auto::Tuner::new`); asked for otherwise it would silently be the radius.
+        if self.radius_indirect_auto()
+            && (self.radius.value().is_some()
+                || (self.forward_rays.value().is_some() && self.camera_samples.value().is_some()))
+        {
+            fail(
+                "integrator.radius_indirect",
+                "\"auto\" needs radius = \"auto\" and automatic forward_rays or camera_samples \
+                 (the pilots that choose it run only then)"
+                    .into(),
+            );
+        }
         self.check_schedule(&mut fail);
         if let Some(q) = self.q.value()
             && !(q > 0.0 && q <= 1.0)
