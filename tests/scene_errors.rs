@@ -30,6 +30,12 @@ fn fails(text: &str, sets: &[&str]) -> SceneError {
     }
 }
 
+/// GOOD with `lines` added to its `[integrator]` table after `q = 0.5` (line 7): the first
+/// added line is line 8.
+fn with_integrator(lines: &str) -> String {
+    GOOD.replace("q = 0.5", &format!("q = 0.5\n{lines}"))
+}
+
 /// The error points into the file at `line` and names `key`.
 fn assert_at(e: &SceneError, line: usize, key: &str) {
     let text = e.to_string();
@@ -79,10 +85,7 @@ fn negative_width_is_rejected() {
 #[test]
 fn conflicting_or_empty_radius_schedules_are_rejected_with_their_line() {
     let e = fails(
-        &GOOD.replace(
-            "q = 0.5",
-            "q = 0.5\nalpha = 0.8\nradius_schedule = \"fixed\"",
-        ),
+        &with_integrator("alpha = 0.8\nradius_schedule = \"fixed\""),
         &[],
     );
     assert_at(&e, 9, "integrator.radius_schedule");
@@ -668,26 +671,16 @@ fn bad_spectral_lines_name_file_line_and_key() {
 /// its line rather than silently rendered at the radius. Other strings are refused too.
 #[test]
 fn an_automatic_radius_for_scattered_light_without_its_pilots_is_rejected() {
-    let auto = "q = 0.5\nradius_indirect = \"auto\"";
-    assert!(
-        load_str(
-            &GOOD.replace("q = 0.5", auto),
-            Path::new("scenes/test.toml"),
-            &[]
-        )
-        .is_ok()
-    );
+    let auto = with_integrator("radius_indirect = \"auto\"");
+    assert!(load_str(&auto, Path::new("scenes/test.toml"), &[]).is_ok());
     let e = fails(
-        &GOOD.replace(
-            "q = 0.5",
-            "q = 0.5\nradius = 0.01\nradius_indirect = \"auto\"",
-        ),
+        &with_integrator("radius = 0.01\nradius_indirect = \"auto\""),
         &[],
     );
     assert_at(&e, 9, "integrator.radius_indirect");
     assert!(e.to_string().contains("needs radius = \"auto\""), "{e}");
-    let pinned = "q = 0.5\nradius_indirect = \"auto\"\nforward_rays = 1000\ncamera_samples = 1";
-    let e = fails(&GOOD.replace("q = 0.5", pinned), &[]);
+    let pinned = "radius_indirect = \"auto\"\nforward_rays = 1000\ncamera_samples = 1";
+    let e = fails(&with_integrator(pinned), &[]);
     assert_at(&e, 8, "integrator.radius_indirect");
     let e = fails(GOOD, &["integrator.radius_indirect=\"twice\""]);
     assert!(e.to_string().contains("radius_indirect"), "{e}");
