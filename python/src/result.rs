@@ -38,7 +38,7 @@ impl RenderResult {
     /// The result of `film`; `settings` says how its passes sampled (None: unknown, as for a
     /// film file).
     pub fn new(film: Film, id: FilmId, settings: Option<serde_json::Value>) -> PyResult<Self> {
-        let opts = output_options(&id, &film.auto_settings).map_err(film_error)?;
+        let opts = output_options(&id, &film).map_err(film_error)?;
         Python::attach(|py| {
             let img = py.detach(|| film.image());
             let arrays = arrays(py, img, &opts)?;
@@ -135,7 +135,7 @@ impl RenderResult {
                 .map_err(film_error);
         }
         output::format_of(&path).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let opts = output_options(&self.id, &self.film.auto_settings).map_err(film_error)?;
+        let opts = output_options(&self.id, &self.film).map_err(film_error)?;
         py.detach(|| output::write(&path, &self.film.image(), &opts))
             .map_err(film_error)
     }

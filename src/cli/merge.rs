@@ -48,7 +48,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("{}: cannot merge", path.display()))?;
     }
     let id = &first.id;
-    let opts = film_files::output_options(id, &film.auto_settings)?;
+    let opts = film_files::output_options(id, &film)?;
     let failed = film_files::write_outputs(&args.outputs, &derived, &film, id, &opts);
     if let Some(e) = failed.into_iter().next() {
         // The parts are untouched: the merge can simply be run again.

@@ -12,18 +12,11 @@ use rayon::prelude::*;
 
 use crate::spectrum::SpectralGrid;
 
+use super::blend::{Blend, BlendSums};
+use super::fixed::{MAX_SAMPLE, SQ_SCALE, SUM_SCALE, to_fixed};
 use super::layer::LAYERS;
 use super::sensor::{self, FilmExtras, SensorKind, SensorReading};
 use super::{PassBuffer, SpectralImage};
-
-/// Fixed-point scale of the radiance sums: 2^64 units per radiance unit (resolution 5e-20,
-/// finer than the f32 pass estimates near any visible value).
-pub const SUM_SCALE: f64 = 18_446_744_073_709_551_616.0;
-/// Fixed-point scale of the sums of squares: 2^48 units per squared radiance unit.
-pub const SQ_SCALE: f64 = 281_474_976_710_656.0;
-/// Largest pass estimate accepted; larger (or non-finite) samples are dropped and counted.
-/// Keeps one sample's square inside the `i128` range at `SQ_SCALE`.
-pub const MAX_SAMPLE: f64 = 1.0e11;
 
 /// The film: pass estimates of a contiguous range of passes `first .. first + passes`, summed,
 /// with per-pixel statistics across passes.
@@ -55,6 +48,9 @@ pub struct Film {
     /// attribute `brumeAutoSettings`, so a merged image is the same bytes as a single run's.
     /// Not part of the film's shape: the choice follows from the render's identity.
     pub auto_settings: Vec<String>,
+    /// The difference layers of the smaller radius for scattered light, when every pass of
+    /// the film carried them (`blend`: the image is then blended from the two radii).
+    pub blend: Option<BlendSums>,
 }
 
 /// Why two films cannot be merged.
@@ -107,6 +103,7 @@ impl Film {
             sensor_sum: vec![0; sensors * n],
             sensor_sq: vec![0; sensors],
             auto_settings: Vec::new(),
+            blend: None,
         }
     }
 
@@ -161,9 +158,26 @@ impl Film {
             })
             .sum();
         self.dropped += dropped + pass.dropped;
+        self.add_blend(pass);
         self.add_lights(pass);
         self.dropped += self.add_sensors(pass);
         self.passes += 1;
+    }
+
+    /// Adds the pass's difference layers (`blend`). The sums exist only while every pass of
+    /// the film had them: a pass without them (or a film begun without them) leaves the film
+    /// without, so that it outputs the larger radius's image, which its passes all estimate.
+    fn add_blend(&mut self, pass: &PassBuffer) {
+        if pass.blend.is_empty() {
+            self.blend = None;
+            return;
+        }
+        if self.passes == 0 && self.blend.is_none() {
+            self.blend = Some(BlendSums::new(self.width * self.height * self.grid.n));
+        }
+        if let Some(b) = &mut self.blend {
+            b.add(&pass.data, &pass.blend);
+        }
     }
 
     /// Adds each light's part of the pass to its layer (a buffer without light layers adds
@@ -295,6 +309,16 @@ impl Film {
                 *a = a.wrapping_add(*b);
             }
         }
+        self.blend = match (self.blend.take(), &other.blend) {
+            (Some(mut a), Some(b)) => {
+                a.merge(b);
+                Some(a)
+            }
+            (None, Some(b)) if self.passes == 0 => Some(b.clone()),
+            (Some(a), None) if other.passes == 0 => Some(a),
+            // One part had no difference layers: the merge estimates the larger radius's image.
+            (Some(_) | None, None) | (None, Some(_)) => None,
+        };
         self.passes += other.passes;
         self.dropped += other.dropped;
         // Parts of one render made the same choice; a part written before films kept it has
@@ -313,21 +337,47 @@ impl Film {
         first.rfind(": q = ").map(|i| &first[i + 2..])
     }
 
-    /// The mean over passes, its standard error, and the two component layers.
+    /// The weight of the smaller radius for scattered light in the image (`blend`), None when
+    /// the film has no difference layers.
+    pub fn blend(&self) -> Option<Blend> {
+        let px = self.width * self.height * self.grid.n;
+        let (sum_m, sum_s) = self.sum.split_at(px);
+        let b = self.blend.as_ref()?;
+        Some(b.weight(|i| sum_m[i].wrapping_add(sum_s[i]), self.passes))
+    }
+
+    /// The mean over passes, its standard error, and the two component layers; with
+    /// difference layers, blended from the two radii by the weight [`Self::blend`] chooses.
     pub fn image(&self) -> SpectralImage {
         let px = self.width * self.height * self.grid.n;
         let p = self.passes.max(1) as f64;
         let mut img = SpectralImage::new(self.width, self.height, self.grid.clone());
         let (sum_m, sum_s) = self.sum.split_at(px);
         let mut noise = vec![0.0f32; px];
+        let w = self.blend().map(|b| b.w);
+        let (mut medium, mut surface) = (vec![0.0f32; px], vec![0.0f32; px]);
         for i in 0..px {
-            let total = sum_m[i].wrapping_add(sum_s[i]) as f64 / SUM_SCALE;
-            let mean = total / p;
+            let total = sum_m[i].wrapping_add(sum_s[i]);
+            let (mut m, mut s) = (
+                sum_m[i] as f64 / SUM_SCALE / p,
+                sum_s[i] as f64 / SUM_SCALE / p,
+            );
+            let mut mean = (total as f64 / SUM_SCALE) / p;
+            let mut var = if self.passes > 1 {
+                let sq = self.sum_sq[i] as f64 / SQ_SCALE;
+                (sq - p * mean * mean) / (p - 1.0)
+            } else {
+                0.0
+            };
+            if let (Some(b), Some(w)) = (&self.blend, w) {
+                let (dm, ds, dv) = b.shift(i, total, self.passes, w);
+                (m, s, var) = (m + dm, s + ds, var + dv);
+                mean += dm + ds;
+            }
+            (medium[i], surface[i]) = (m as f32, s as f32);
             img.data[i] = mean as f32;
             if self.passes > 1 {
-                let sq = self.sum_sq[i] as f64 / SQ_SCALE;
-                let var = ((sq - p * mean * mean) / (p - 1.0)).max(0.0);
-                noise[i] = (var / p).sqrt() as f32;
+                noise[i] = (var.max(0.0) / p).sqrt() as f32;
             }
         }
         img.noise = Some(noise);
@@ -336,23 +386,13 @@ impl Film {
                 .map(|v| (*v as f64 / SUM_SCALE / p) as f32)
                 .collect()
         };
-        img.layers = vec![
-            ("medium".into(), layer(sum_m)),
-            ("surface".into(), layer(sum_s)),
-        ];
+        img.layers = vec![("medium".into(), medium), ("surface".into(), surface)];
         for (k, name) in self.extras.light_layers.iter().enumerate() {
             img.layers
                 .push((name.clone(), layer(&self.light_sum[k * px..(k + 1) * px])));
         }
         img
     }
-}
-
-/// Rounds `v * scale` to the nearest integer (exact for the f32-derived values it gets: the
-/// rounding depends on the value only, never on what it is added to).
-#[inline]
-fn to_fixed(v: f64, scale: f64) -> i128 {
-    (v * scale).round() as i128
 }
 
 #[cfg(test)]

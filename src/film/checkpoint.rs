@@ -9,29 +9,31 @@
 //! length of a JSON text (u32) and the text (the film's extras: its sensors and light layer
 //! names, and the automatic settings' choice when there is one); then the sums and sums of squares (i128 each: pixels, light layers, sensors' values
 //! per bin, sensors' squared photometric values), and an FNV-1a 64 checksum of everything
-//! before it, so a truncated or damaged file is refused. Version 2 files (no lines, no extras)
-//! are still read.
+//! before it, so a truncated or damaged file is refused. A film with the difference layers of
+//! `film::blend` is written as version 4: a u32 1 after the extras' JSON, and the layers'
+//! sums after the sensors' (`BlendSums::all`); every other film as version 3, byte for byte as
+//! before. Version 2 files (no lines, no extras) are still read.
 //!
 //! Reading checks the size the header announces against the file's size before reading the
 //! data, so a damaged header cannot make brume allocate without bound, and a file can be
 //! inspected ([`read_header`]) without loading its sums.
 
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Read, Write};
-use std::path::{Path, PathBuf};
+use std::io::{BufWriter, Write};
+use std::path::Path;
 
 use crate::spectrum::{MAX_BINS, SpectralGrid};
 
+use super::file_io::OLDEST;
+pub use super::file_io::{FilmFileError, VERSION};
+use super::file_io::{Hashing, Source, damaged, open};
 use super::identity::{self, Fnv};
 use super::stored::{self, StoredIdentity};
-use super::{Film, FilmExtras, FilmId, LAYERS, atomic};
+use super::{BlendSums, Film, FilmExtras, FilmId, LAYERS, atomic};
 
 const MAGIC: &[u8; 8] = b"BRUMEFLM";
-/// Version 2 added the identity JSON (description and sampling settings), version 3 the
-/// spectral lines of the grid and the extras (sensors, light layers).
-pub const VERSION: u32 = 3;
-/// The oldest version read.
-const OLDEST: u32 = 2;
+/// The version of films without difference layers.
+const PLAIN: u32 = 3;
 /// Most light layers or sensors accepted on reading.
 const MAX_EXTRAS: u32 = 1 << 16;
 /// Films larger than this many values (pixels x bins) are refused on reading: 2^32 values are
@@ -67,38 +69,6 @@ impl FilmHeader {
     /// The pass index after the last one in the file.
     pub fn end(&self) -> u64 {
         self.first + self.passes
-    }
-}
-
-#[derive(Debug, thiserror::Error)]
-pub enum FilmFileError {
-    #[error("{path}: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
-    #[error("{path}: not a brume film file")]
-    Magic { path: PathBuf },
-    #[error("{path}: film file version {found}, this brume reads versions {OLDEST} to {VERSION}")]
-    Version { path: PathBuf, found: u32 },
-    #[error("{path}: damaged or truncated film file ({what})")]
-    Damaged { path: PathBuf, what: &'static str },
-}
-
-/// Writer that hashes what passes through it.
-struct Hashing<W> {
-    inner: W,
-    hash: Fnv,
-}
-
-impl<W: Write> Write for Hashing<W> {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let n = self.inner.write(buf)?;
-        self.hash.update(&buf[..n]);
-        Ok(n)
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.inner.flush()
     }
 }
 
@@ -150,7 +120,8 @@ fn encode(
     let u32_of = |v: usize| u32::try_from(v).map_err(|_| std::io::Error::other("film too large"));
     let lines = f.grid.lines();
     w.write_all(MAGIC)?;
-    w.write_all(&VERSION.to_le_bytes())?;
+    let version = if f.blend.is_some() { VERSION } else { PLAIN };
+    w.write_all(&version.to_le_bytes())?;
     for v in [id.seed, id.scene_hash, f.first, f.passes, f.dropped] {
         w.write_all(&v.to_le_bytes())?;
     }
@@ -176,54 +147,17 @@ fn encode(
         w.write_all(&u32_of(v)?.to_le_bytes())?;
     }
     w.write_all(extras)?;
+    if f.blend.is_some() {
+        w.write_all(&1u32.to_le_bytes())?;
+    }
     let sums = [&f.sum, &f.sum_sq, &f.light_sum, &f.sensor_sum, &f.sensor_sq];
     for v in sums.into_iter().flatten() {
         w.write_all(&v.to_le_bytes())?;
     }
+    for v in f.blend.iter().flat_map(BlendSums::all) {
+        w.write_all(&v.to_le_bytes())?;
+    }
     Ok(())
-}
-
-/// Reader that hashes what it reads, with the file's errors mapped to [`FilmFileError`].
-struct Source<'a> {
-    inner: BufReader<File>,
-    hash: Fnv,
-    path: &'a Path,
-}
-
-impl Source<'_> {
-    fn bytes<const N: usize>(&mut self) -> Result<[u8; N], FilmFileError> {
-        let mut b = [0u8; N];
-        self.fill(&mut b)?;
-        Ok(b)
-    }
-    fn fill(&mut self, b: &mut [u8]) -> Result<(), FilmFileError> {
-        self.inner.read_exact(b).map_err(|e| self.fail(e))?;
-        self.hash.update(b);
-        Ok(())
-    }
-    fn u64(&mut self) -> Result<u64, FilmFileError> {
-        self.bytes().map(u64::from_le_bytes)
-    }
-    fn u32(&mut self) -> Result<u32, FilmFileError> {
-        self.bytes().map(u32::from_le_bytes)
-    }
-    fn fail(&self, e: std::io::Error) -> FilmFileError {
-        if e.kind() == std::io::ErrorKind::UnexpectedEof {
-            damaged(self.path, "truncated")
-        } else {
-            FilmFileError::Io {
-                path: self.path.to_path_buf(),
-                source: e,
-            }
-        }
-    }
-}
-
-fn damaged(path: &Path, what: &'static str) -> FilmFileError {
-    FilmFileError::Damaged {
-        path: path.to_path_buf(),
-        what,
-    }
 }
 
 /// Fixed fields read before the identity text; the text is parsed once the checksum is known
@@ -242,6 +176,8 @@ struct Raw {
     lights: usize,
     sensors: usize,
     extras: Vec<u8>,
+    /// Whether the film has the difference layers of `film::blend` (version 4).
+    blend: bool,
     values: usize,
     file_bytes: u64,
 }
@@ -250,20 +186,20 @@ impl Raw {
     /// Number of i128 sums after the header.
     fn sums(&self) -> usize {
         let (px, n) = (self.width * self.height, self.grid.n);
-        (LAYERS + 1) * self.values + self.lights * px * n + self.sensors * (n + 1)
+        (LAYERS + 1) * self.values
+            + self.lights * px * n
+            + self.sensors * (n + 1)
+            + self.blend_sums()
     }
-}
 
-fn open(path: &Path) -> Result<Source<'_>, FilmFileError> {
-    let f = File::open(path).map_err(|source| FilmFileError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    Ok(Source {
-        inner: BufReader::with_capacity(1 << 20, f),
-        hash: Fnv::default(),
-        path,
-    })
+    /// Number of the difference layers' sums (the last of the file's sums).
+    fn blend_sums(&self) -> usize {
+        if self.blend {
+            BlendSums::len(self.values)
+        } else {
+            0
+        }
+    }
 }
 
 /// The magic and the format version, refused unless this brume reads it.
@@ -331,17 +267,14 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
     } else {
         (0, 0, Vec::new())
     };
-    let extras_bytes = if found >= 3 {
-        12 + extras.len() as u64
-    } else {
-        0
+    let blend = found >= 4 && read_blend(src)?;
+    let extras_bytes = match found {
+        4.. => 16 + extras.len() as u64,
+        3 => 12 + extras.len() as u64,
+        _ => 0,
     };
-    let data =
-        ((LAYERS as u64 + 1) * values + lights as u64 * values + sensors as u64 * (n + 1)) * 16;
-    if FIXED_HEADER + line_bytes + identity_len as u64 + extras_bytes + data + 8 != file_bytes {
-        return Err(damaged(path, "file size does not match the header"));
-    }
-    Ok(Raw {
+    let header = FIXED_HEADER + line_bytes + identity_len as u64 + extras_bytes;
+    let raw = Raw {
         seed: seed?,
         scene_hash: scene_hash?,
         first: first?,
@@ -354,9 +287,22 @@ fn read_raw(src: &mut Source) -> Result<Raw, FilmFileError> {
         lights,
         sensors,
         extras,
+        blend,
         values: values as usize,
         file_bytes,
-    })
+    };
+    if header + raw.sums() as u64 * 16 + 8 != file_bytes {
+        return Err(damaged(path, "file size does not match the header"));
+    }
+    Ok(raw)
+}
+
+/// A version 4 file's flag of the difference layers (1; a film without them is version 3).
+fn read_blend(src: &mut Source) -> Result<bool, FilmFileError> {
+    match src.u32()? {
+        1 => Ok(true),
+        _ => Err(damaged(src.path, "bad difference-layer flag")),
+    }
 }
 
 /// A version 3 file's extras: the light layer and sensor counts and the extras' JSON, which
@@ -465,7 +411,18 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
         return Err(damaged(path, "extras do not match their counts"));
     }
     let (lights, sensors, n) = (raw.lights, raw.sensors, raw.grid.n);
+    let blend_sums = sums.split_off(total - raw.blend_sums());
+    let blend = raw.blend;
     let h = header(raw, path)?;
+    let blend = if blend {
+        Some(
+            BlendSums::from_all(blend_sums, values)
+                .ok_or_else(|| damaged(path, "difference layers"))?,
+        )
+    } else {
+        None
+    };
+    let total = sums.len();
     let sensor_sq = sums.split_off(total - sensors);
     let sensor_sum = sums.split_off(sums.len() - sensors * n);
     let light_sum = sums.split_off(sums.len() - lights * values);
@@ -484,6 +441,7 @@ pub fn read(path: &Path) -> Result<FilmFile, FilmFileError> {
         sensor_sum,
         sensor_sq,
         auto_settings,
+        blend,
     };
     Ok(FilmFile { film, id: h.id })
 }

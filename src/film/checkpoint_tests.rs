@@ -52,7 +52,42 @@ fn a_grid_with_lines_round_trips() {
     assert_eq!(back.film.grid.lines(), [532.0, 633.0]);
     let version =
         |p: &Path| u32::from_le_bytes(std::fs::read(p).unwrap()[8..12].try_into().unwrap());
-    assert_eq!(version(&p), VERSION);
+    // A film without difference layers is written as before the blend: version 3.
+    assert_eq!(version(&p), PLAIN);
+}
+
+/// A film with the blend's difference layers (`film::blend`).
+fn sample_blended() -> FilmFile {
+    let mut f = sample();
+    let mut film = Film::starting_at(2, 2, f.film.grid.clone(), 7);
+    let n = film.grid.n;
+    let mut b = PassBuffer::new(4, n).with_blend(true);
+    b.fold_blend();
+    for (i, v) in b.data.iter_mut().enumerate() {
+        *v = i as f32 * 0.37 - 3.0;
+    }
+    for (i, v) in b.blend.iter_mut().enumerate() {
+        *v = (i as f32 * 0.11).sin();
+    }
+    film.add_pass(&b);
+    film.add_pass(&b);
+    assert!(film.blend.is_some());
+    f.film = film;
+    f
+}
+
+#[test]
+fn a_blended_film_round_trips_as_version_4() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("a.brume");
+    let f = sample_blended();
+    write(&p, &f.film, &f.id).unwrap();
+    let back = read(&p).unwrap();
+    assert_eq!(back, f);
+    assert_eq!(back.film.image().data, f.film.image().data);
+    let bytes = std::fs::read(&p).unwrap();
+    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 4);
+    assert_eq!(read_header(&p).unwrap().file_bytes, bytes.len() as u64);
 }
 
 #[test]
@@ -60,7 +95,7 @@ fn damaged_files_are_refused_not_panicked_on() {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("a.brume");
     let lines = SpectralGrid::with_lines(3, 380.0, 730.0, &[532.0]).unwrap();
-    for f in [sample(), sample_on(lines)] {
+    for f in [sample(), sample_on(lines), sample_blended()] {
         write(&p, &f.film, &f.id).unwrap();
         let good = std::fs::read(&p).unwrap();
         // Every truncation and a flipped byte at every position is an error, never a panic.

@@ -9,6 +9,7 @@
 
 use super::PassBuffer;
 use super::layer::{LAYERS, Layer, products_finite};
+use super::pass::BlendRadius;
 
 pub struct ChunkSplats {
     pixels: usize,
@@ -16,8 +17,11 @@ pub struct ChunkSplats {
     /// Light layers and sensors of the pass this chunk joins.
     lights: usize,
     sensors: usize,
+    /// Whether the pass keeps the difference layers of `film::blend`.
+    blend: bool,
     /// Slot of each logged splat: `layer * pixels + pixel` for the image, then
-    /// `LAYERS * pixels + light * pixels + pixel` for a light layer, then one slot per sensor.
+    /// `LAYERS * pixels + light * pixels + pixel` for a light layer, then the difference
+    /// layers' `layer * pixels + pixel` when kept, then one slot per sensor.
     slots: Vec<u32>,
     /// `n` values per logged splat.
     values: Vec<f32>,
@@ -38,12 +42,16 @@ impl ChunkSplats {
 
     /// An empty log of the shape of `buf`, for a chunk of forward rays.
     pub fn for_buffer(buf: &PassBuffer) -> Self {
-        Self::with_extras(buf.pixels, buf.n, buf.lights, buf.sensors)
+        let mut c = Self::with_extras(buf.pixels, buf.n, buf.lights, buf.sensors);
+        c.blend = !buf.blend.is_empty();
+        c
     }
 
     /// An empty log of this one's shape.
     pub fn empty_like(&self) -> Self {
-        Self::with_extras(self.pixels, self.n, self.lights, self.sensors)
+        let mut c = Self::with_extras(self.pixels, self.n, self.lights, self.sensors);
+        c.blend = self.blend;
+        c
     }
 
     /// A log for a pass with `lights` light layers and `sensors` sensors.
@@ -53,6 +61,7 @@ impl ChunkSplats {
             n,
             lights,
             sensors,
+            blend: false,
             slots: Vec::new(),
             values: Vec::new(),
             dense: Vec::new(),
@@ -62,8 +71,45 @@ impl ChunkSplats {
         }
     }
 
+    /// Where the sensors' slots start.
+    fn sensors_at(&self) -> usize {
+        (LAYERS + self.lights + if self.blend { 2 * LAYERS } else { 0 }) * self.pixels
+    }
+
     fn slot_count(&self) -> usize {
-        (LAYERS + self.lights) * self.pixels + self.sensors
+        self.sensors_at() + self.sensors
+    }
+
+    /// Whether the pass keeps the difference layers (`film::blend`).
+    #[inline(always)]
+    pub fn keeps_blend(&self) -> bool {
+        self.blend
+    }
+
+    /// Adds `w * f * scale` to layer `layer` of a pixel at radius `radius` of the pass's two
+    /// for scattered light (`PassBuffer::blend`); ignored when the pass has no blend. A sample
+    /// with a non-finite bin is left out and counted, as [`Self::splat`] does.
+    #[inline(always)]
+    pub fn splat_blend(
+        &mut self,
+        (radius, layer): (BlendRadius, Layer),
+        pixel: usize,
+        w: &[f32],
+        f: &[f32],
+        scale: f32,
+    ) {
+        if !self.blend {
+            return;
+        }
+        let n = self.n;
+        let (w, f) = (&w[..n], &f[..n]);
+        if !products_finite(w, f, scale) {
+            self.dropped += 1;
+            return;
+        }
+        let group = radius as usize * LAYERS;
+        let slot = (LAYERS + self.lights + group + layer as usize) * self.pixels + pixel;
+        self.add_values(slot, w.iter().zip(f).map(|(w, f)| w * f * scale));
     }
 
     fn dense_len(&self) -> usize {
@@ -142,7 +188,7 @@ impl ChunkSplats {
             self.dropped += 1;
             return;
         }
-        let slot = (LAYERS + self.lights) * self.pixels + sensor;
+        let slot = self.sensors_at() + sensor;
         self.add_values(slot, value.iter().map(|x| x * scale));
     }
 
@@ -183,16 +229,19 @@ impl ChunkSplats {
         self.is_dense = true;
     }
 
-    /// The values of slot `slot` in `buf` (image, light layers, then sensors).
+    /// The values of slot `slot` in `buf` (image, light layers, difference layers, sensors).
     fn target<'a>(&self, buf: &'a mut PassBuffer, slot: usize) -> &'a mut [f32] {
         let (n, image) = (self.n, LAYERS * self.pixels);
         let lights = image + self.lights * self.pixels;
+        let sensors = self.sensors_at();
         let (data, i) = if slot < image {
             (&mut buf.data, slot)
         } else if slot < lights {
             (&mut buf.light_data, slot - image)
+        } else if slot < sensors {
+            (&mut buf.blend, slot - lights)
         } else {
-            (&mut buf.sensor_data, slot - lights)
+            (&mut buf.sensor_data, slot - sensors)
         };
         &mut data[i * n..i * n + n]
     }
@@ -201,8 +250,14 @@ impl ChunkSplats {
     pub fn drain_into(&mut self, buf: &mut PassBuffer) {
         let n = self.n;
         debug_assert_eq!(
-            (buf.pixels, buf.n, buf.lights, buf.sensors),
-            (self.pixels, n, self.lights, self.sensors)
+            (
+                buf.pixels,
+                buf.n,
+                buf.lights,
+                buf.sensors,
+                !buf.blend.is_empty()
+            ),
+            (self.pixels, n, self.lights, self.sensors, self.blend)
         );
         buf.dropped += std::mem::take(&mut self.dropped);
         for (slot, v) in self.variant_log.drain(..) {

@@ -1,8 +1,8 @@
 //! The film's extras with synthetic splats: sensors' sums and statistics, light layers, merges
 //! in any grouping and the film file, all bit for bit.
 
-use super::accum::{SQ_SCALE, SUM_SCALE};
 use super::checkpoint;
+use super::fixed::{SQ_SCALE, SUM_SCALE};
 use super::sensor::{RELIABLE_PASSES, weights};
 use super::*;
 use crate::spectrum::SpectralGrid;

@@ -27,6 +27,22 @@ pub struct PassBuffer {
     /// a pass (`integrator::nest`); empty but in the automatic settings' nested pilots. Never
     /// added to a film.
     pub variants: Vec<f64>,
+    /// Empty unless the pass estimates scattered light at two radii (`film::blend`). While
+    /// the pass is traced: `[radius][layer][pixel][bin]`, the larger radius's estimate of
+    /// scattered light (taken out of `data`, where it belongs) and the smaller's; once it is
+    /// done ([`Self::fold_blend`]), `[layer][pixel][bin]`: `data` holds the larger radius's
+    /// image and this the difference `small - large`. Splitting it so, a hit outside the
+    /// smaller ball costs one splat, as without the blend, and one inside it two.
+    pub blend: Vec<f32>,
+}
+
+/// Which of a pass's two radii for scattered light a deposit is at (`PassBuffer::blend`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlendRadius {
+    /// The larger: the image's (its deposits go to `data` when the pass is folded).
+    Large = 0,
+    /// The direct radius.
+    Small = 1,
 }
 
 impl PassBuffer {
@@ -47,7 +63,37 @@ impl PassBuffer {
             sensor_data: vec![0.0; sensors * n],
             dropped: 0,
             variants: Vec::new(),
+            blend: Vec::new(),
         }
+    }
+
+    /// This buffer with the two radii's layers of `film::blend` when `blend` is true.
+    pub fn with_blend(mut self, blend: bool) -> Self {
+        if blend {
+            self.blend = vec![0.0; 2 * LAYERS * self.pixels * self.n];
+        }
+        self
+    }
+
+    /// Ends a pass traced with two radii: the larger radius's deposits join `data`, and
+    /// `blend` keeps the difference of the smaller's from them (see [`Self::blend`]).
+    pub fn fold_blend(&mut self) {
+        let values = LAYERS * self.pixels * self.n;
+        if self.blend.len() != 2 * values {
+            return;
+        }
+        let (large, small) = self.blend.split_at_mut(values);
+        self.data
+            .par_chunks_mut(1 << 14)
+            .zip(large.par_chunks_mut(1 << 14))
+            .zip(small.par_chunks(1 << 14))
+            .for_each(|((data, large), small)| {
+                for ((d, l), s) in data.iter_mut().zip(large.iter_mut()).zip(small) {
+                    *d += *l;
+                    *l = *s - *l;
+                }
+            });
+        self.blend.truncate(values);
     }
 
     /// This buffer with room for the totals of `count` nested estimates (`variants`).
@@ -167,6 +213,7 @@ impl PassBuffer {
             (&mut self.data, &other.data),
             (&mut self.light_data, &other.light_data),
             (&mut self.sensor_data, &other.sensor_data),
+            (&mut self.blend, &other.blend),
         ] {
             a.par_chunks_mut(1 << 14)
                 .zip(b.par_chunks(1 << 14))
@@ -175,7 +222,12 @@ impl PassBuffer {
     }
 
     pub fn scale(&mut self, s: f32) {
-        for d in [&mut self.data, &mut self.light_data, &mut self.sensor_data] {
+        for d in [
+            &mut self.data,
+            &mut self.light_data,
+            &mut self.sensor_data,
+            &mut self.blend,
+        ] {
             d.par_iter_mut().for_each(|x| *x *= s);
         }
     }

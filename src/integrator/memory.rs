@@ -22,6 +22,20 @@ const SURFACE_BYTES: f64 =
 /// pass buffer (two f32 layers, 8) and the image written at the end (data, noise and two
 /// layers in f32, 16).
 const FILM_BYTES_PER_VALUE: f64 = 48.0 + 8.0 + 16.0;
+/// More with `radius_indirect = "auto"`, whose passes may carry the blend of two radii
+/// (`film::blend`): the sums of the two difference layers, their squares and cross terms (64),
+/// and the pass's two radii's layers (16).
+const BLEND_BYTES_PER_VALUE: f64 = 64.0 + 16.0;
+
+/// Film bytes per pixel and bin (an upper estimate: the blend's only when the pilots may
+/// choose it).
+fn film_bytes_per_value(settings: &IntegratorDesc) -> f64 {
+    if settings.radius_indirect_auto() {
+        FILM_BYTES_PER_VALUE + BLEND_BYTES_PER_VALUE
+    } else {
+        FILM_BYTES_PER_VALUE
+    }
+}
 
 /// What a render of a scene is expected to hold in memory, per pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -58,7 +72,7 @@ impl MemoryEstimate {
             gather_bytes: row_paths * f64::from(height) * per_path,
             path_gather_bytes: per_path,
             budget: settings.gather_budget() as f64,
-            film_bytes: pixels * bins as f64 * FILM_BYTES_PER_VALUE,
+            film_bytes: pixels * bins as f64 * film_bytes_per_value(settings),
         }
     }
 

@@ -107,10 +107,15 @@ fn progressive(r0: f32, alpha: f32, p: u64) -> f32 {
 /// (smooth, and sparse: it wants a large radius). A forward ray deposits with `direct` on its
 /// first flight from such a light and with `indirect` after its first scattering or non-null
 /// surface event (`integrator.radius_indirect`; the same as `direct` unless set).
+///
+/// With `blend`, scattered light is also estimated at the direct radius, from the same hits
+/// (the larger ball holds the smaller), and its difference from the larger radius's estimate
+/// kept apart, so that the film can choose between the two (`film::blend`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Radii {
     pub direct: f32,
     pub indirect: f32,
+    pub blend: bool,
 }
 
 impl Radii {
@@ -119,6 +124,7 @@ impl Radii {
         Radii {
             direct: r,
             indirect: r,
+            blend: false,
         }
     }
 

@@ -6,7 +6,7 @@ use std::ops::Range;
 use std::path::Path;
 
 use crate::film::output::OutputOptions;
-use crate::film::{FilmId, IdentityError, Mismatch, Sampling};
+use crate::film::{Blend, Film, FilmId, IdentityError, Mismatch, Sampling};
 use crate::integrator::{IntegratorDesc, Shrink};
 
 use super::desc::FilmDesc;
@@ -53,19 +53,31 @@ pub fn film_desc(id: &FilmId) -> Result<FilmDesc, FilmSettingsError> {
     Ok(serde_json::from_value(film)?)
 }
 
-/// The output settings of a film's images: the scene's `[film]` table, and the automatic
+/// The output settings of a film's images: the scene's `[film]` table, the automatic
 /// settings' choice (`Film::auto_settings`, `Choice::report`) as the EXR attribute
-/// `brumeAutoSettings` when the render made one.
-pub fn output_options(
-    id: &FilmId,
-    auto_settings: &[String],
-) -> Result<OutputOptions, FilmSettingsError> {
+/// `brumeAutoSettings` when the render made one, and the blend of the two radii for scattered
+/// light (`Film::blend`) as `brumeRadiusBlend` when the film has one.
+pub fn output_options(id: &FilmId, film: &Film) -> Result<OutputOptions, FilmSettingsError> {
     let mut opts = film_desc(id)?.output_options();
-    if !auto_settings.is_empty() {
+    if !film.auto_settings.is_empty() {
         opts.attributes
-            .push(("brumeAutoSettings".into(), auto_settings.join("; ")));
+            .push(("brumeAutoSettings".into(), film.auto_settings.join("; ")));
+    }
+    if let Some(b) = film.blend() {
+        opts.attributes
+            .push(("brumeRadiusBlend".into(), blend_report(&b)));
     }
     Ok(opts)
+}
+
+/// The blend of a film's two radii for scattered light, as `--verbose` and the EXR attribute
+/// `brumeRadiusBlend` report it.
+pub fn blend_report(b: &Blend) -> String {
+    format!(
+        "the direct radius's weight for scattered light {:.4} (blur {:.4e}, noise {:.4e}, \
+         covariance {:.4e}: the sums over pixels and bins that choose it)",
+        b.w, b.blur, b.noise, b.cross
+    )
 }
 
 /// Why `memory_check` refuses a render.

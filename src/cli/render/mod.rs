@@ -60,6 +60,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             printed = printed.and_then(|()| outln!("auto: {line}"));
         }
     }
+    if let (Some(b), true) = (film.blend(), args.verbose) {
+        let line = brume::scene::identity::blend_report(&b);
+        printed = printed.and_then(|()| outln!("blend: {line}"));
+    }
     // An interrupt from now on lets the files being written finish; a second aborts.
     interrupt.writing_starts();
     let saved = save(args, (&outputs, &derived), &film, &id)?;
@@ -235,7 +239,7 @@ fn save(
     if film.passes > 0 {
         targets.extend(outputs.iter().chain(&args.checkpoint).cloned());
     }
-    let opts = film_files::output_options(id, &film.auto_settings)?;
+    let opts = film_files::output_options(id, film)?;
     let is_film = |p: &PathBuf| is_film_path(p) || args.checkpoint.as_ref() == Some(p);
     let mut image = None;
     let mut failed = Vec::new();

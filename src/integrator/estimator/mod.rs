@@ -134,6 +134,23 @@ pub trait VolumeEstimator {
         med: &Medium,
         radius: f32,
     ) -> Option<Spectrum>;
+
+    /// [`Self::contribution`] at the radius `small`, below `large`, for a forward segment
+    /// whose contribution at `large` is `at_large` (the blend of two radii, `film::blend`): an
+    /// estimator may derive one from the other where they differ by a scalar.
+    #[inline(always)]
+    fn contribution_within(
+        &self,
+        f: &ForwardSegment,
+        seg: (&SegmentRecord, &PlaneTable),
+        v: &VolumeRecord,
+        (w, med): (&[f32], &Medium),
+        (large, at_large): (f32, &Spectrum),
+        small: f32,
+    ) -> Option<Spectrum> {
+        let _ = (large, at_large);
+        self.contribution(f, seg, v, w, med, small)
+    }
 }
 
 /// The integration volume of a render (`integrator.volume`, with `q` for spheres).

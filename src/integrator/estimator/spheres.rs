@@ -137,6 +137,35 @@ impl VolumeEstimator for Spheres {
         let k = med.phase.eval(cos) * track_length_density(&chord, radius) / fraction;
         Some(at * sphere_weight(med, x, (u, v), k))
     }
+
+    /// Away from the planes that cut spheres, the two balls' estimates differ only in their
+    /// chord over their volume, as long as the flux at the chord's middle is the same: a grey
+    /// flight's is constant, and a full crossing of both balls has one middle (the foot of the
+    /// perpendicular from their common centre).
+    #[inline(always)]
+    fn contribution_within(
+        &self,
+        f: &ForwardSegment,
+        (seg, planes): (&SegmentRecord, &PlaneTable),
+        v: &VolumeRecord,
+        (w, med): (&[f32], &Medium),
+        (large, at_large): (f32, &Spectrum),
+        small: f32,
+    ) -> Option<Spectrum> {
+        let centre = seg.at(v.s);
+        let inner = segment_sphere(f.o, f.d, f.len, centre, small)?;
+        let outer = segment_sphere(f.o, f.d, f.len, centre, large);
+        match outer {
+            Some(outer)
+                if !v.near_boundary() && (f.flight.is_none() || inner.full && outer.full) =>
+            {
+                let ratio =
+                    track_length_density(&inner, small) / track_length_density(&outer, large);
+                Some(*at_large * ratio)
+            }
+            Some(_) | None => self.contribution(f, (seg, planes), v, w, med, small),
+        }
+    }
 }
 
 /// A sphere's weight without the camera throughput, times `k`: what

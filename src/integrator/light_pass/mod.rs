@@ -19,7 +19,7 @@ use super::record::{CLASS_C, CLASS_D};
 use super::rng::Rng;
 use super::sensors::SensorGather;
 use super::target::Target;
-use crate::film::{ChunkSplats, Layer, PassBuffer};
+use crate::film::{BlendRadius, ChunkSplats, Layer, PassBuffer};
 use crate::geometry::{Hit, Ray};
 use crate::material::LobeKind;
 use crate::medium::{Along, ChannelPick, FlightEnd, ForwardFlight, Tracker, sample_scatter};
@@ -213,6 +213,26 @@ impl<'a> ForwardTracer<'a> {
         }
     }
 
+    /// Whether a camera path's first volumes and surface spheres leave direct and caustic light
+    /// to the splat to the camera (in every tile; `camera_splat`).
+    #[inline(always)]
+    fn skips_primary(&self, target: Target) -> bool {
+        self.specular_chain
+            && matches!(target, Target::Image { .. })
+            && self.integrator.splat_to_camera
+    }
+
+    /// Whether this flight's deposits into `target` are also made at the direct radius, for
+    /// the film's blend of two radii for scattered light (`film::blend`): scattered light only,
+    /// into the image only.
+    #[inline(always)]
+    fn blends(&self, gather: &Gather, target: Target) -> bool {
+        gather.radii.blend
+            && !self.first_flight
+            && matches!(target, Target::Image { .. })
+            && self.buf.keeps_blend()
+    }
+
     fn gather_surfaces_in(&mut self, (gather, target): (&Gather, Target), hit: &Hit, v: Vec3) {
         let scene = self.scene;
         let n = scene.grid.n;
@@ -224,13 +244,13 @@ impl<'a> ForwardTracer<'a> {
             -hit.ng
         };
         let direct = self.first_flight;
-        // With the splat to the camera on, a camera path's first surface spheres leave direct
-        // and caustic light to it (in every tile; `camera_splat`).
-        let skip_primary = self.specular_chain
-            && matches!(target, Target::Image { .. })
-            && self.integrator.splat_to_camera;
+        let skip_primary = self.skips_primary(target);
         let radius = gather.radii.of(direct);
         let inv_area = 1.0 / (PI * radius * radius);
+        // The blend's smaller radius takes the records within it, with their disc fraction at
+        // it (`SurfaceRecord::scale`).
+        let (blend, small) = (self.blends(gather, target), gather.radii.direct);
+        let (small2, inv_small) = (small * small, 1.0 / (PI * small * small));
         let mut hits = 0u64;
         let mut first_paths_hits = 0u64;
         let nest = self.nested(target);
@@ -266,7 +286,18 @@ impl<'a> ForwardTracer<'a> {
             let factor = f * *flux * (inv_area * scale);
             let w = gather.throughput(rec.throughput);
             let (buf, norm) = (&mut *self.buf, self.norm);
-            target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
+            if blend {
+                let pixel = rec.pixel as usize;
+                let at = (BlendRadius::Large, Layer::Surface);
+                buf.splat_blend(at, pixel, w, &factor.0[..n], norm);
+                if rec.p.distance_squared(hit.p) < small2 {
+                    let inner = f * *flux * (inv_small * rec.scale);
+                    let at = (BlendRadius::Small, Layer::Surface);
+                    buf.splat_blend(at, pixel, w, &inner.0[..n], norm);
+                }
+            } else {
+                target.splat(buf, Layer::Surface, rec.pixel, w, &factor.0[..n], norm);
+            }
             let deposit = Deposit::Gathered {
                 extra_path: rec.extra,
             };

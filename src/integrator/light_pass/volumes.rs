@@ -3,7 +3,7 @@
 //! structures, with the render's estimator.
 
 use super::ForwardTracer;
-use crate::film::Layer;
+use crate::film::{BlendRadius, Layer};
 use crate::geometry::Ray;
 use crate::integrator::estimator::{Estimator, ForwardSegment, VolumeEstimator};
 use crate::integrator::gather::Gather;
@@ -73,14 +73,10 @@ impl ForwardTracer<'_> {
         let scene = self.scene;
         let n = scene.grid.n;
         let radius = gather.radii.of(self.first_flight);
+        let (blend, small) = (self.blends(gather, target), gather.radii.direct);
         let (norm, class) = (self.norm, self.class);
         let nest = self.nested(target);
-        // A camera path's first volumes leave direct and caustic light to the splat
-        // (`camera_splat`).
-        let skip_primary = if self.specular_chain
-            && matches!(target, Target::Image { .. })
-            && self.integrator.splat_to_camera
-        {
+        let skip_primary = if self.skips_primary(target) {
             PRIMARY
         } else {
             0
@@ -115,11 +111,26 @@ impl ForwardTracer<'_> {
             let med = &scene.media[seg.medium as usize];
             let w = gather.throughput(seg.throughput);
             if let Some(factor) = e.contribution(&fwd, (seg, planes), rec, w, med, radius) {
-                target.splat(buf, Layer::Medium, seg.pixel, w, &factor.0[..n], norm);
+                let (pixel, f) = (seg.pixel, &factor.0[..n]);
+                if blend {
+                    // The smaller ball lies inside the larger: only its hits add to it.
+                    let at = (BlendRadius::Large, Layer::Medium);
+                    buf.splat_blend(at, pixel as usize, w, f, norm);
+                    let large = (radius, &factor);
+                    let seg = (seg, planes);
+                    if let Some(inner) =
+                        e.contribution_within(&fwd, seg, rec, (w, med), large, small)
+                    {
+                        let at = (BlendRadius::Small, Layer::Medium);
+                        buf.splat_blend(at, pixel as usize, w, &inner.0[..n], norm);
+                    }
+                } else {
+                    target.splat(buf, Layer::Medium, pixel, w, f, norm);
+                }
                 let deposit = Deposit::Gathered {
                     extra_path: seg.classes & EXTRA != 0,
                 };
-                nest::add(buf, nest, deposit, seg.pixel, (w, &factor.0[..n], norm));
+                nest::add(buf, nest, deposit, pixel, (w, &factor.0[..n], norm));
             }
         });
         self.hits += hits;

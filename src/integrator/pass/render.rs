@@ -28,7 +28,11 @@ impl Renderer<'_> {
     ) -> Option<(PassBuffer, Work, NestCounts)> {
         self.radii = self.integrator.radii(film_pass);
         let variants = nest.map_or(0, |n| n.variants.len());
-        let mut buf = self.film.pass_buffer().with_variants(variants);
+        let mut buf = self
+            .film
+            .pass_buffer()
+            .with_variants(variants)
+            .with_blend(self.radii.blend);
         let mut counts = NestCounts::default();
         let mut work = Work::default();
         let sensors = self.sensor_pass(pass, stop)?;
@@ -92,6 +96,7 @@ impl Renderer<'_> {
         if let Some(s) = &sensors {
             s.splat(&mut buf, &self.integrator);
         }
+        buf.fold_blend();
         Some((buf, work, counts))
     }
 

@@ -5,6 +5,8 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use super::Renderer;
+
+mod blend;
 use crate::integrator::auto::{PassConfig, pixel_totals};
 use crate::integrator::nest::{Nest, Variant};
 use crate::scene::{build, build_integrator, load};

@@ -29,7 +29,7 @@ use crate::spectrum::Spectrum;
 use amount::Amount;
 
 /// Largest total power of a light, W. The film sums pass estimates in fixed point and drops a
-/// sample beyond `film::accum::MAX_SAMPLE` (1e11 per pixel and bin): a 1e30 W lamp renders
+/// sample beyond `film::MAX_SAMPLE` (1e11 per pixel and bin): a 1e30 W lamp renders
 /// black. 1e9 W (a million stadium floodlights) keeps a single forward ray's splat far inside
 /// that range at any sensible radius; larger sources are scaled-down scenes or the sun, which
 /// is a directional light.
