@@ -69,8 +69,9 @@ pub struct Integrator {
     pub indirect_scale: f32,
     /// Whether passes whose radius for scattered light the pilots doubled also estimate that
     /// light at the direct radius, for the film's blend of the two (`film::blend`): with
-    /// `radius_indirect = "auto"`, on a film without light layers or sensors (whose values
-    /// would be the larger radius's alone).
+    /// `radius_indirect = "auto"`, on a film without light layers (whose images would be the
+    /// larger radius's alone and no longer sum to the blended total). Sensors keep the larger
+    /// radius unblended: their values are their own estimates, not the image's pixels.
     pub blend_allowed: bool,
     pub forward_rays: u64,
     pub camera_samples: u32,
@@ -100,9 +101,7 @@ impl Integrator {
                 shrink: desc.shrink(),
             },
             indirect_scale: desc.radius_indirect_value().map_or(1.0, |ri| ri / r0),
-            blend_allowed: desc.radius_indirect_auto()
-                && scene.film_extras.light_layers.is_empty()
-                && scene.film_extras.sensors.is_empty(),
+            blend_allowed: desc.radius_indirect_auto() && scene.film_extras.light_layers.is_empty(),
             forward_rays: desc.forward_rays.value().unwrap_or(defaults::FORWARD_RAYS),
             camera_samples: desc
                 .camera_samples

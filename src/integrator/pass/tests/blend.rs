@@ -12,9 +12,11 @@ use crate::integrator::Renderer;
 use crate::integrator::auto::PassConfig;
 use crate::scene::{build, build_integrator, load};
 
-/// Renders pass `p` of `file` at `indirect_scale` (2 with the blend when `blend`); returns the
-/// pass's image `data` and its difference layers.
-fn one_pass(file: &str, sets: &[&str], scale: f32, blend: bool, p: u64) -> (Vec<f32>, Vec<f32>) {
+/// A pass's image `data`, its difference layers and its sensors' values.
+type Pass = (Vec<f32>, Vec<f32>, Vec<f32>);
+
+/// Renders pass `p` of `file` at `indirect_scale` (2 with the blend when `blend`).
+fn one_pass(file: &str, sets: &[&str], scale: f32, blend: bool, p: u64) -> Pass {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("scenes")
         .join(file);
@@ -33,7 +35,7 @@ fn one_pass(file: &str, sets: &[&str], scale: f32, blend: bool, p: u64) -> (Vec<
     r.integrator.apply(&config, &scene.media).expect("applies");
     let stop = AtomicBool::new(false);
     let (buf, ..) = r.render_sampled((1, p), 0, None, &stop).expect("rendered");
-    (buf.data, buf.blend)
+    (buf.data, buf.blend, buf.sensor_data)
 }
 
 /// Largest difference of two images over their largest value.
@@ -48,16 +50,26 @@ fn relative(a: &[f32], b: &[f32]) -> f64 {
 
 fn blended_pass_holds_both_radii(file: &str, sets: &[&str]) {
     for p in [0, 3] {
-        let (large, diff) = one_pass(file, sets, 2.0, true, p);
+        let (large, diff, sensors) = one_pass(file, sets, 2.0, true, p);
         assert_eq!(
             diff.len(),
             large.len(),
             "{file}: the pass has its difference layers"
         );
         assert_eq!(diff.len() % LAYERS, 0);
-        let (alone_large, none) = one_pass(file, sets, 2.0, false, p);
+        let (alone_large, none, alone_sensors) = one_pass(file, sets, 2.0, false, p);
         assert!(none.is_empty());
-        let (alone_small, _) = one_pass(file, sets, 1.0, false, p);
+        // Sensors are not blended: their values are the larger radius's (up to the sums' order).
+        assert_eq!(sensors.len(), alone_sensors.len());
+        let (alone_small, _, small_sensors) = one_pass(file, sets, 1.0, false, p);
+        if !sensors.is_empty() {
+            let e_sensors = relative(&sensors, &alone_sensors);
+            assert!(e_sensors < 1e-5, "{file}: the sensors' values {e_sensors}");
+            assert!(
+                relative(&alone_sensors, &small_sensors) > 1e-4,
+                "{file}: the sensors do not see the radius"
+            );
+        }
         let small: Vec<f32> = large.iter().zip(&diff).map(|(l, d)| l + d).collect();
         let (e_large, e_small) = (
             relative(&large, &alone_large),
@@ -87,7 +99,8 @@ fn a_blended_pass_holds_both_radii_in_fog_cube() {
     blended_pass_holds_both_radii("fog-cube.toml", &["camera.width=24", "camera.height=24"]);
 }
 
-/// Spot lamps in a room with walls: volumes cut by the walls' planes, surface discs at edges.
+/// Spot lamps in a room with walls: volumes cut by the walls' planes, surface discs at edges;
+/// its five illuminance sensors keep the larger radius.
 #[test]
 fn a_blended_pass_holds_both_radii_in_street_fog() {
     blended_pass_holds_both_radii("street-fog.toml", &["camera.width=32", "camera.height=18"]);
